@@ -1,0 +1,15 @@
+#pragma once
+// Each `owsim` subcommand registers itself on the CLI11 app; main() only dispatches.
+#include <CLI/CLI.hpp>
+
+namespace owsim::cli {
+
+// What a command asks main() to exit with once it has run (0 unless it says otherwise).
+struct CommandResult {
+  int exit_status = 0;
+};
+
+void add_pattern_command(CLI::App& app, CommandResult& result);
+void add_info_command(CLI::App& app, CommandResult& result);
+
+}  // namespace owsim::cli

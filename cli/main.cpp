@@ -1,0 +1,31 @@
+// owsim — the command-line tool. Library code throws owsim::Error; only here does an error become
+// one line on stderr and a non-zero exit status.
+#include <CLI/CLI.hpp>
+
+#include <exception>
+#include <iostream>
+
+#include "cli/commands.hpp"
+#include "geometry/error.hpp"
+#include "owsim/version.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"owsim — MilOWS/HELLAS obstacle-warning LiDAR simulator"};
+  app.set_version_flag("--version", std::string("owsim ") + owsim::version_string);
+  app.require_subcommand(1);
+  owsim::cli::CommandResult result;
+  owsim::cli::add_pattern_command(app, result);
+  owsim::cli::add_info_command(app, result);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const owsim::Error& e) {
+    std::cerr << "owsim: " << e.what() << '\n';
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "owsim: internal error: " << e.what() << '\n';
+    return 2;
+  }
+  return result.exit_status;
+}

@@ -1,0 +1,22 @@
+# Installs owsim::owsim with a CMake package config so that an outside project can
+#   find_package(owsim REQUIRED)  target_link_libraries(app PRIVATE owsim::owsim)
+include(GNUInstallDirs)
+include(CMakePackageConfigHelpers)
+
+install(TARGETS owsim owsim_geometry owsim_sensor owsim_engine owsim_io
+        EXPORT owsimTargets
+        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+        INCLUDES DESTINATION include/owsim)
+install(TARGETS owsim_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(FILES ${CMAKE_CURRENT_BINARY_DIR}/generated/owsim/version.hpp DESTINATION include/owsim/owsim)
+install(EXPORT owsimTargets NAMESPACE owsim:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/owsim)
+
+configure_package_config_file(cmake/owsimConfig.cmake.in
+  ${CMAKE_CURRENT_BINARY_DIR}/owsimConfig.cmake
+  INSTALL_DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/owsim)
+write_basic_package_version_file(${CMAKE_CURRENT_BINARY_DIR}/owsimConfigVersion.cmake
+  COMPATIBILITY SameMinorVersion)
+install(FILES ${CMAKE_CURRENT_BINARY_DIR}/owsimConfig.cmake
+              ${CMAKE_CURRENT_BINARY_DIR}/owsimConfigVersion.cmake
+              ${CMAKE_CURRENT_SOURCE_DIR}/cmake/owsimDependencies.cmake
+        DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/owsim)

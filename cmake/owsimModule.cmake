@@ -1,0 +1,22 @@
+# owsim_add_module(NAME PUBLIC_DEPS ... PRIVATE_DEPS ...)
+# One static library per top-level folder: NAME/*.cpp, headers beside them, included as
+# "NAME/header.hpp" from the repository root. Installed headers go to include/owsim/NAME/.
+function(owsim_set_warnings target)
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow -Wconversion
+                         -Wno-sign-conversion)
+endfunction()
+
+function(owsim_add_module name)
+  cmake_parse_arguments(ARG "" "" "PUBLIC_DEPS;PRIVATE_DEPS" ${ARGN})
+  file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/${name}/*.cpp)
+  file(GLOB headers CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/${name}/*.hpp)
+  add_library(owsim_${name} STATIC ${sources} ${headers})
+  add_library(owsim::${name} ALIAS owsim_${name})
+  set_target_properties(owsim_${name} PROPERTIES EXPORT_NAME ${name} LINKER_LANGUAGE CXX)
+  target_include_directories(owsim_${name} PUBLIC
+    $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}>
+    $<INSTALL_INTERFACE:include/owsim>)
+  target_link_libraries(owsim_${name} PUBLIC ${ARG_PUBLIC_DEPS} PRIVATE ${ARG_PRIVATE_DEPS})
+  owsim_set_warnings(owsim_${name})
+  install(FILES ${headers} DESTINATION include/owsim/${name})
+endfunction()

@@ -1,0 +1,1 @@
+#include "io/little_endian.hpp"

@@ -1,0 +1,38 @@
+#pragma once
+// The MilOWS motor encoder ↔ mirror angle β (SENSOR-SPEC §3, source eq 4.1–4.7 and appendix A).
+//
+// The mirror is driven through a four-bar linkage; the source fits the motor angle φ as a
+// degree-10 polynomial of β (appendix A table 4.1), monotonic (dφ/dβ < 0) over β ∈ [−30°, 30°],
+// so its inverse is unique there. The encoder is a 16-bit signed count of 360°/65536.
+// Valid range: β ∈ [−30°, 30°]; the inverse is exact to 1e-9° on that range.
+#include <array>
+#include <cstdint>
+
+namespace owsim {
+
+using EncoderCount = std::int16_t;
+
+inline constexpr double kEncoderDegPerCount = 360.0 / 65536.0;  // §3 eq 4.7: 0.0054931640625°
+inline constexpr double kMirrorBetaLimitDeg = 30.0;             // §2: β stays within ±30°
+
+// bc1..bc11 of appendix A table 4.1: φ(β) = Σ bc_i · β^(11−i), degrees.
+inline constexpr std::array<double, 11> kMotorPolynomial = {
+    4.6809e-17, -7.6174e-15, 2.806e-14, -1.1676e-11, 3.2275e-11, -3.6118e-8,
+    -1.2932e-7, -0.00013677, -0.0017148, -1.5399, -115.91};
+
+// Motor angle φ(β) in degrees  (SENSOR-SPEC §3, appendix A table 4.1)
+[[nodiscard]] double motor_angle_deg(double mirror_beta_deg);
+// dφ/dβ, used by the inverse  (SENSOR-SPEC §3)
+[[nodiscard]] double motor_angle_slope(double mirror_beta_deg);
+// β(φ): the inverse polynomial, Newton safeguarded by bisection on [−30°, 30°]  (SENSOR-SPEC §3)
+// φ outside [φ(30°), φ(−30°)] is clamped to the nearest end of the valid range.
+[[nodiscard]] double mirror_beta_deg_from_motor_angle(double motor_angle_deg);
+// Encoder word value round(φ / 0.0054931640625°) as int16  (SENSOR-SPEC §3, eq 4.7)
+[[nodiscard]] EncoderCount encoder_count(double motor_angle_deg);
+// The motor angle an encoder count stands for  (SENSOR-SPEC §3, eq 4.7)
+[[nodiscard]] double motor_angle_from_encoder_deg(EncoderCount count);
+// Mirror β → encoder word, and back (via the inverse polynomial)  (SENSOR-SPEC §3)
+[[nodiscard]] EncoderCount encoder_from_mirror_beta(double mirror_beta_deg);
+[[nodiscard]] double mirror_beta_deg_from_encoder(EncoderCount count);
+
+}  // namespace owsim
