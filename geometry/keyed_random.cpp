@@ -1,4 +1,4 @@
-#include "sensor/keyed_random.hpp"
+#include "geometry/keyed_random.hpp"
 
 #include <cmath>
 #include <numbers>
