@@ -1,0 +1,51 @@
+#include "sensor/mounting.hpp"
+
+#include <cmath>
+#include <numbers>
+
+namespace owsim {
+
+Eigen::Vector3d arc_unit_ray(double alpha_deg, double beta_deg) {
+  constexpr double kRadPerDeg = std::numbers::pi / 180.0;
+  const double alpha = alpha_deg * kRadPerDeg, beta = beta_deg * kRadPerDeg;
+  const double cos_alpha = std::cos(alpha);
+  return {std::sin(alpha), cos_alpha * std::sin(beta), cos_alpha * std::cos(beta)};
+}
+
+Eigen::Vector3d src_from_arc(const Eigen::Vector3d& abc) { return {abc.z(), abc.x(), abc.y()}; }
+
+Eigen::Matrix3d model_rotation(SensorModel model) {
+  if (model == SensorModel::hellas) return Eigen::Matrix3d::Identity();
+  Eigen::Matrix3d rx_minus_90;  // Rx(−90°) written out, so that (c, a, b) ↦ (c, b, −a) exactly
+  rx_minus_90 << 1, 0, 0,       //
+      0, 0, 1,                  //
+      0, -1, 0;
+  return rx_minus_90;
+}
+
+Eigen::Matrix3d mount_rotation(const Mount& mount) {
+  return rotation_z_deg(mount.yaw_deg) * rotation_y_deg(mount.pitch_deg) *
+         rotation_x_deg(mount.roll_deg);
+}
+
+Eigen::Vector3d ray_direction_body(SensorModel model, const Mount& mount, double alpha_deg,
+                                   double beta_deg) {
+  return mount_rotation(mount) * model_rotation(model) *
+         src_from_arc(arc_unit_ray(alpha_deg, beta_deg));
+}
+
+SensorPlacement sensor_placement(const Pose& pose, const Mount& mount, SensorModel model) {
+  const Eigen::Matrix3d enu_from_body =
+      pose.frame_from_local_enu * enu_from_ned_matrix() * body_to_ned(pose.attitude);
+  SensorPlacement placement;
+  placement.enu_from_src = enu_from_body * mount_rotation(mount) * model_rotation(model);
+  placement.origin_enu_m = pose.position_enu_m + enu_from_body * mount.lever_arm_m;
+  return placement;
+}
+
+Eigen::Vector3d ray_direction_enu(const SensorPlacement& placement, double alpha_deg,
+                                  double beta_deg) {
+  return placement.enu_from_src * src_from_arc(arc_unit_ray(alpha_deg, beta_deg));
+}
+
+}  // namespace owsim
