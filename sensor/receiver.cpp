@@ -1,0 +1,167 @@
+#include "sensor/receiver.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <string>
+#include <string_view>
+#include <utility>
+
+#include "geometry/error.hpp"
+#include "geometry/keyed_random.hpp"
+#include "sensor/footprint.hpp"
+#include "sensor/return_energy.hpp"
+
+namespace owsim {
+namespace {
+
+std::string number(double value) {
+  char text[32];
+  const auto result = std::to_chars(text, text + sizeof text, value, std::chars_format::general, 9);
+  return std::string(text, result.ptr);
+}
+
+void require_non_negative(std::string_view key, double value) {
+  if (!(std::isfinite(value) && value >= 0.0)) {
+    throw input_error(key, "must be a finite number ≥ 0, got " + number(value));
+  }
+}
+
+void require_positive(std::string_view key, double value) {
+  if (!(std::isfinite(value) && value > 0.0)) {
+    throw input_error(key, "must be a finite number > 0, got " + number(value));
+  }
+}
+
+// Range order; equal ranges by higher energy, then object and surface, so the order is total.
+bool nearer(const Candidate& a, const Candidate& b) {
+  if (a.range_m != b.range_m) return a.range_m < b.range_m;
+  if (a.energy_rel != b.energy_rel) return a.energy_rel > b.energy_rel;
+  if (a.object_index != b.object_index) return a.object_index < b.object_index;
+  return a.surface < b.surface;
+}
+
+bool stronger(const Candidate& a, const Candidate& b) {
+  if (a.energy_rel != b.energy_rel) return a.energy_rel > b.energy_rel;
+  return nearer(a, b);
+}
+
+double noisy_range_m(double range_m, double sigma_m, const RandomKey& key) {
+  return sigma_m == 0.0 ? range_m : range_m + sigma_m * standard_normal(key);
+}
+
+}  // namespace
+
+void validate(const ReceiverParams& p) {
+  if (!(std::isfinite(p.beam.divergence_mrad) && p.beam.divergence_mrad >= 0.0 &&
+        p.beam.divergence_mrad < 1000.0)) {
+    throw input_error("sensor.divergence_mrad", "must be a full angle in [0, 1000) mrad, got " +
+                                                    number(p.beam.divergence_mrad));
+  }
+  require_non_negative("sensor.beam_exit_radius_m", p.beam.exit_radius_m);
+  if (!(p.threshold >= 0.0 && p.threshold <= 1.0)) {
+    throw input_error("sensor.threshold",
+                      "must be an energy ratio in [0, 1], got " + number(p.threshold));
+  }
+  if (!std::isfinite(p.range_noise_sigma_m)) {
+    throw input_error("sensor.range_noise_sigma_m",
+                      "must be a finite number (0 disables, negative = Δ/√2), got " +
+                          number(p.range_noise_sigma_m));
+  }
+  require_non_negative("sensor.min_return_separation_m", p.min_return_separation_m);
+  validate(p.atmosphere);
+  require_positive("sensor.speed_of_light_mps", p.counter.speed_of_light_mps);
+  require_positive("sensor.refractive_index_air", p.counter.refractive_index_air);
+  require_positive("sensor.timer_period_s", p.counter.timer_period_s);
+  if (p.counter.timeout_counts < 1 || p.counter.timeout_counts > kCounterMax) {
+    throw input_error("sensor.timeout_counts", "must be 1..4095 (12-bit counter), got " +
+                                                   std::to_string(p.counter.timeout_counts));
+  }
+}
+
+double range_noise_sigma_m(const ReceiverParams& p) {
+  return p.range_noise_sigma_m < 0.0 ? default_range_noise_sigma_m(p.counter)
+                                     : p.range_noise_sigma_m;
+}
+
+PulseReturns select_returns(std::span<Candidate> candidates, const ReceiverParams& p,
+                            std::uint64_t seed, std::int64_t frame, int pulse) {
+  PulseReturns out;
+  out.counter1 = out.counter2 = p.counter.timeout_counts;
+
+  // SENSOR-SPEC §7 detection: ξ_rx/ξ_tx ≥ threshold (NaN energies and ranges never register).
+  const auto detected_end = std::partition(
+      candidates.begin(), candidates.end(),
+      [&](const Candidate& c) { return c.energy_rel >= p.threshold && std::isfinite(c.range_m); });
+  const std::span<Candidate> detected(candidates.begin(), detected_end);
+  if (detected.empty()) return out;
+
+  // SENSOR-SPEC §7 pinned return selection.
+  const Candidate* chosen[2] = {nullptr, nullptr};
+  if (p.rule == ReturnRule::strongest) {
+    chosen[0] = &*std::min_element(detected.begin(), detected.end(), stronger);
+  } else {
+    std::sort(detected.begin(), detected.end(), nearer);
+    chosen[0] = &detected.front();
+    for (const Candidate& c : detected.subspan(1)) {
+      if (c.range_m >= detected.front().range_m + p.min_return_separation_m) {
+        chosen[1] = &c;
+        break;
+      }
+    }
+  }
+
+  // SENSOR-SPEC §1 noise and counter; a counter at the timeout is no return.
+  const double sigma = range_noise_sigma_m(p);
+  constexpr RandomPurpose kPurpose[2] = {RandomPurpose::range_noise_first,
+                                         RandomPurpose::range_noise_second};
+  for (int i = 0; i < 2 && chosen[i] != nullptr; ++i) {
+    const Candidate& c = *chosen[i];
+    const double range = noisy_range_m(c.range_m, sigma, {seed, frame, pulse, kPurpose[i]});
+    const std::uint16_t counter = counter_from_range(range, p.counter);
+    if (counter >= p.counter.timeout_counts) continue;
+    out.returns[out.count++] = Return{.range_m = std::max(range, 0.0),
+                                      .counter = counter,
+                                      .energy_rel = c.energy_rel,
+                                      .incidence_deg = c.incidence_deg,
+                                      .object_index = c.object_index,
+                                      .surface = c.surface,
+                                      .true_range_m = c.range_m};
+  }
+  if (out.count == 2 && out.returns[1].range_m < out.returns[0].range_m) {
+    std::swap(out.returns[0], out.returns[1]);
+  }
+  if (out.count >= 1) out.counter1 = out.returns[0].counter;
+  if (out.count == 2) out.counter2 = out.returns[1].counter;
+  return out;
+}
+
+std::uint16_t reference_counter(std::uint16_t reference_counts, const ReceiverParams& p,
+                                std::uint64_t seed, std::int64_t frame, int pulse) {
+  const double range =
+      noisy_range_m(range_from_counter(reference_counts, p.counter), range_noise_sigma_m(p),
+                    {seed, frame, pulse, RandomPurpose::range_noise_reference});
+  return counter_from_range(range, p.counter);
+}
+
+double max_detection_range_m(double wire_diameter_m, double reflectivity, const ReceiverParams& p) {
+  const double wire_radius = 0.5 * wire_diameter_m;
+  const auto detected = [&](double range_m) {
+    const double fraction = footprint_fraction(0.0, wire_radius, beam_radius_m(range_m, p.beam));
+    const double energy =
+        energy_rel(fraction, 0.0, reflectivity, two_way_transmission(p.atmosphere, range_m));
+    return energy >= p.threshold;
+  };
+  double near = 0.0;
+  double far = timeout_range_m(p.counter);
+  if (detected(far)) return far;
+  if (!detected(near)) return 0.0;
+  // Energy falls monotonically with range (the beam widens, T_atm falls): bisect the crossing.
+  for (int iteration = 0; iteration < 200 && far - near > 1e-9 * far; ++iteration) {
+    const double middle = 0.5 * (near + far);
+    (detected(middle) ? near : far) = middle;
+  }
+  return near;
+}
+
+}  // namespace owsim

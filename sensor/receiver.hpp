@@ -1,0 +1,99 @@
+#pragma once
+// The MilOWS receiver (SENSOR-SPEC §1 and §7): detection threshold, return selection, range noise
+// and the range counter, for one pulse at a time.
+//
+// The engine hands select_returns() every candidate a pulse's beam met (wires by closest approach,
+// poles, trees and ground by the central ray's hit, each with its energy from
+// sensor/return_energy.hpp, occluded wires already dropped). The receiver keeps candidates with
+// energy_rel ≥ threshold and picks the returns: `first_second` (default) records the nearest and
+// the next one at least min_return_separation_m (0.75 m = c·5 ns/2) beyond it, `strongest` the
+// source's single highest-energy return. Each return's range gets Gaussian noise keyed by
+// (seed, frame, pulse, return number) — σ = 0.4241 m by default, the §1 table's figure; a
+// negative σ means Δ/√2 = 0.42384 m with Δ = 0.59940 m — and becomes a counter round(range/Δ);
+// a counter at the timeout (2066) is no return.
+// Decisions where the spec is silent: (1) a return whose noisy counter reaches the timeout is
+// dropped and a surviving second return moves up to slot 1; (2) after noise the surviving returns
+// are ordered by noisy range, so counter 1 ≤ counter 2 always (return 1 is the earlier echo); (3)
+// a noisy range below 0 is reported as 0; (4) equal ranges are ordered by higher energy, then
+// object index, then surface, so the result never depends on the input order.
+// Allocation-free and thread-safe: the candidate span is sorted in place.
+#include <cstdint>
+#include <span>
+
+#include "sensor/atmosphere.hpp"
+#include "sensor/beam.hpp"
+#include "sensor/range_counter.hpp"
+
+namespace owsim {
+
+// Which detected candidates become returns (SENSOR-SPEC §7 pinned return selection).
+enum class ReturnRule {
+  first_second,  // default: nearest, then the next at least min_return_separation_m beyond it
+  strongest,     // the source's rule: the highest-energy candidate only (ties → nearer)
+};
+
+struct ReceiverParams {
+  BeamParams beam;           // §7
+  double threshold = 0.005;  // §7 minimum ξ_rx/ξ_tx (key sensor.threshold)
+  double range_noise_sigma_m =
+      0.4241;  // §1 σ; 0 disables, negative → Δ/√2 (key sensor.range_noise_sigma_m)
+  ReturnRule rule = ReturnRule::first_second;  // key sensor.returns
+  double min_return_separation_m = 0.75;       // §7 c·5 ns/2 (key sensor.min_return_separation_m)
+  Atmosphere atmosphere;                       // §7 T_atm
+  RangeCounterParams counter;                  // §1
+};
+
+// Throws owsim::Error naming the scenario key for: a divergence outside [0, 1000) mrad, a negative
+// exit radius, a threshold outside [0, 1], a non-finite noise σ, a negative separation, a bad
+// atmosphere (validate(Atmosphere)), non-positive counter constants or a timeout outside 1..4095.
+// Every field is checked, so the per-pulse functions need not be.
+void validate(const ReceiverParams& p);
+
+// The σ in use: range_noise_sigma_m, or Δ/√2 when it is negative  (SENSOR-SPEC §1, eq 3.3)
+[[nodiscard]] double range_noise_sigma_m(const ReceiverParams& p);
+
+// One object the beam met on one pulse. `surface` is the caller's surface class (the engine's
+// wire / pole / tree / ground tag); the receiver carries it through without reading it.
+struct Candidate {
+  double range_m = 0.0;        // true range along the ray
+  double energy_rel = 0.0;     // ξ_rx / ξ_tx (sensor/return_energy.hpp)
+  double incidence_deg = 0.0;  // θ at the object
+  std::uint32_t object_index = 0;
+  std::uint8_t surface = 0;
+};
+
+struct Return {
+  double range_m = 0.0;  // after noise
+  std::uint16_t counter = 0;
+  double energy_rel = 0.0;
+  double incidence_deg = 0.0;
+  std::uint32_t object_index = 0;
+  std::uint8_t surface = 0;
+  double true_range_m = 0.0;
+};
+
+struct PulseReturns {
+  int count = 0;  // 0, 1 or 2 valid entries in returns
+  Return returns[2];
+  std::uint16_t counter1 = RangeCounterParams{}.timeout_counts;  // the timeout when absent
+  std::uint16_t counter2 = RangeCounterParams{}.timeout_counts;  // the timeout when absent
+};
+
+// Threshold, selection, noise and counters for one pulse  (SENSOR-SPEC §1, §7 pinned return
+// selection). Reorders `candidates` in place; allocation-free.
+[[nodiscard]] PulseReturns select_returns(std::span<Candidate> candidates, const ReceiverParams& p,
+                                          std::uint64_t seed, std::int64_t frame, int pulse);
+
+// The reference fiber's counter: reference_counts·Δ plus the same range noise, keyed
+// range_noise_reference  (SENSOR-SPEC §8)
+[[nodiscard]] std::uint16_t reference_counter(std::uint16_t reference_counts,
+                                              const ReceiverParams& p, std::uint64_t seed,
+                                              std::int64_t frame, int pulse);
+
+// The longest range at which a wire of this diameter and reflectivity crossing the beam centre
+// head-on (d = 0, θ = 0) still reaches the threshold, by bisection on (0, timeout range]; the
+// timeout range when it is detected all the way, 0 when never  (SENSOR-SPEC §7)
+[[nodiscard]] double max_detection_range_m(double wire_diameter_m, double reflectivity,
+                                           const ReceiverParams& p);
+
+}  // namespace owsim

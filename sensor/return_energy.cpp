@@ -1,0 +1,53 @@
+#include "sensor/return_energy.hpp"
+
+#include "sensor/footprint.hpp"
+#include "sensor/reflectivity.hpp"
+
+namespace owsim {
+
+double energy_rel(double footprint_fraction, double incidence_deg, double reflectivity,
+                  double transmission) {
+  return footprint_fraction * (reflectivity_pct(incidence_deg) / kReflectivityNormalPct) *
+         reflectivity * transmission;
+}
+
+ReturnEnergy wire_return_energy(double distance_m, double range_m, double wire_radius_m,
+                                double incidence_deg, double reflectivity, const BeamParams& beam,
+                                const Atmosphere& atmosphere) {
+  const double beam_radius = beam_radius_m(range_m, beam);
+  if (!(distance_m < wire_radius_m + beam_radius)) return {};
+  ReturnEnergy result;
+  result.candidate = true;
+  result.footprint_fraction = footprint_fraction(distance_m, wire_radius_m, beam_radius);
+  result.energy_rel = energy_rel(result.footprint_fraction, incidence_deg, reflectivity,
+                                 two_way_transmission(atmosphere, range_m));
+  return result;
+}
+
+ReturnEnergy cylinder_return_energy(double axis_distance_m, double range_m,
+                                    double cylinder_radius_m, double incidence_deg,
+                                    double reflectivity, const BeamParams& beam,
+                                    const Atmosphere& atmosphere) {
+  const double beam_radius = beam_radius_m(range_m, beam);
+  ReturnEnergy result;
+  result.candidate = axis_distance_m <= cylinder_radius_m;
+  result.footprint_fraction =
+      axis_distance_m + beam_radius <= cylinder_radius_m
+          ? 1.0
+          : footprint_fraction(axis_distance_m, cylinder_radius_m, beam_radius);
+  result.energy_rel = energy_rel(result.footprint_fraction, incidence_deg, reflectivity,
+                                 two_way_transmission(atmosphere, range_m));
+  return result;
+}
+
+ReturnEnergy ground_return_energy(double range_m, double incidence_deg, double reflectivity,
+                                  const Atmosphere& atmosphere) {
+  ReturnEnergy result;
+  result.candidate = true;
+  result.footprint_fraction = 1.0;
+  result.energy_rel =
+      energy_rel(1.0, incidence_deg, reflectivity, two_way_transmission(atmosphere, range_m));
+  return result;
+}
+
+}  // namespace owsim
