@@ -1,0 +1,187 @@
+#include "engine/embree_scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+#include "engine/trace_context.hpp"
+#include "geometry/error.hpp"
+#include "sensor/beam.hpp"
+
+namespace owsim {
+namespace {
+
+// Float rounding of the curve and of the ray may move a grazing beam by a few µm; the capture
+// radius is widened by this much so the exact filter, not float rounding, decides.
+constexpr double kCaptureMarginRelative = 1e-3;
+constexpr double kCaptureMarginAbsolute_m = 1e-3;
+
+// Intersection filter of a conductor: the exact §7 wire test in double precision; the hit is
+// recorded as a candidate and always rejected so traversal goes on to what lies behind.
+void conductor_filter(const RTCFilterFunctionNArguments* args) {
+  const auto* binding = static_cast<const ConductorBinding*>(args->geometryUserPtr);
+  const TraceContext* context = trace_context(args->context);
+  const ReceiverParams& receiver = context->scene->receiver();
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] == 0) continue;
+    args->valid[i] = 0;
+    const unsigned id = RTCRayN_id(args->ray, args->N, i);
+    const unsigned segment = RTCHitN_primID(args->hit, args->N, i);
+    Candidate candidate;
+    if (wire_segment_candidate(context->rays[id], *binding->conductor, segment, binding->object,
+                               receiver, candidate) &&
+        candidate.range_m <= context->max_range_m) {
+      context->candidates[id].offer_wire(candidate);
+    }
+  }
+}
+
+void cylinders_bounds(const RTCBoundsFunctionArguments* args) {
+  const auto* cylinders = static_cast<const std::vector<Cylinder>*>(args->geometryUserPtr);
+  const Eigen::AlignedBox3d box = bounds((*cylinders)[args->primID]);
+  // Round outwards so the float box contains the double cylinder.
+  args->bounds_o->lower_x = std::nextafter(static_cast<float>(box.min().x()), -INFINITY);
+  args->bounds_o->lower_y = std::nextafter(static_cast<float>(box.min().y()), -INFINITY);
+  args->bounds_o->lower_z = std::nextafter(static_cast<float>(box.min().z()), -INFINITY);
+  args->bounds_o->upper_x = std::nextafter(static_cast<float>(box.max().x()), INFINITY);
+  args->bounds_o->upper_y = std::nextafter(static_cast<float>(box.max().y()), INFINITY);
+  args->bounds_o->upper_z = std::nextafter(static_cast<float>(box.max().z()), INFINITY);
+}
+
+// Ray–cylinder in double from the pulse's own ray (eq 6.7–6.10); the nearest accepted hit is
+// kept per ray so the post-pass needs no float round trip.
+void cylinders_intersect(const RTCIntersectFunctionNArguments* args) {
+  const auto* cylinders = static_cast<const std::vector<Cylinder>*>(args->geometryUserPtr);
+  TraceContext* context = trace_context(args->context);
+  RTCRayN* rays = RTCRayHitN_RayN(args->rayhit, args->N);
+  RTCHitN* hits = RTCRayHitN_HitN(args->rayhit, args->N);
+  const Cylinder& cylinder = (*cylinders)[args->primID];
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] == 0) continue;
+    const unsigned id = RTCRayN_id(rays, args->N, i);
+    const PulseRay& ray = context->rays[id];
+    const double t_far = RTCRayN_tfar(rays, args->N, i);
+    const auto hit =
+        intersect(cylinder, ray.origin_enu_m, ray.dir_enu, RTCRayN_tnear(rays, args->N, i), t_far);
+    if (!hit) continue;
+    RTCRayN_tfar(rays, args->N, i) = static_cast<float>(hit->t);
+    RTCHitN_Ng_x(hits, args->N, i) = static_cast<float>(hit->normal.x());
+    RTCHitN_Ng_y(hits, args->N, i) = static_cast<float>(hit->normal.y());
+    RTCHitN_Ng_z(hits, args->N, i) = static_cast<float>(hit->normal.z());
+    RTCHitN_u(hits, args->N, i) = 0.0f;
+    RTCHitN_v(hits, args->N, i) = 0.0f;
+    RTCHitN_primID(hits, args->N, i) = args->primID;
+    RTCHitN_geomID(hits, args->N, i) = args->geomID;
+    RTCHitN_instID(hits, args->N, i, 0) = args->context->instID[0];
+    context->cylinder_hits[id - context->chunk_begin] = CylinderRecord{args->primID, *hit};
+  }
+}
+
+}  // namespace
+
+EmbreeScene::EmbreeScene(const EmbreeDevice& device, const Scene& scene,
+                         const ReceiverParams& receiver, const Eigen::AlignedBox2d& region,
+                         double max_range_m)
+    : objects_(&scene), receiver_(receiver), max_range_m_(max_range_m) {
+  if (!(std::isfinite(max_range_m) && max_range_m > 0.0)) {
+    throw Error("engine: the maximum range must be positive and finite");
+  }
+  scene_ = rtcNewScene(device.get());
+  rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
+  // Robust mode: watertight triangle tests and conservative box tests, so a ray through a
+  // terrain edge or corner cannot slip between two triangles the double-precision brute force
+  // sees as closed.
+  rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+  bindings_.reserve(scene.conductors.size());
+  for (std::size_t i = 0; i < scene.conductors.size(); ++i) attach_conductor(device, i);
+  if (!scene.cylinders.empty()) attach_cylinders(device);
+  terrain_mesh_ = scene.terrain.mesh(region);
+  if (!terrain_mesh_.triangles.empty()) attach_terrain(device);
+  rtcCommitScene(scene_);
+  device.check("building the scene");
+}
+
+EmbreeScene::~EmbreeScene() { rtcReleaseScene(scene_); }
+
+double EmbreeScene::capture_radius_m(const Conductor& conductor) const {
+  const double radius = conductor.radius_m + beam_radius_m(max_range_m_, receiver_.beam);
+  return radius * (1.0 + kCaptureMarginRelative) + kCaptureMarginAbsolute_m;
+}
+
+void EmbreeScene::attach_conductor(const EmbreeDevice& device, std::size_t index) {
+  const Conductor& conductor = scene().conductors[index];
+  if (conductor.points_enu_m.size() < 2) {
+    throw Error("engine: conductor " + conductor.id + " has fewer than two points");
+  }
+  RTCGeometry geometry = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_ROUND_LINEAR_CURVE);
+  const std::size_t points = conductor.points_enu_m.size();
+  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+      geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), points));
+  const auto radius = static_cast<float>(capture_radius_m(conductor));
+  for (std::size_t p = 0; p < points; ++p) {
+    const Eigen::Vector3d& point = conductor.points_enu_m[p];
+    vertices[4 * p + 0] = static_cast<float>(point.x());
+    vertices[4 * p + 1] = static_cast<float>(point.y());
+    vertices[4 * p + 2] = static_cast<float>(point.z());
+    vertices[4 * p + 3] = radius;
+  }
+  auto* segments = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+      geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT, sizeof(unsigned), points - 1));
+  for (std::size_t s = 0; s + 1 < points; ++s) segments[s] = static_cast<unsigned>(s);
+  // No segment has neighbours: each is then a whole capsule (cone and both end spheres). With
+  // neighbour flags (Embree's default for consecutive indices) a segment's surface inside its
+  // neighbours' cones is cut away, so a ray crossing the tube obliquely or edge-on never reports
+  // the segments it passes inside — and one of those may be the conductor's strongest.
+  auto* flags = static_cast<std::uint8_t*>(rtcSetNewGeometryBuffer(
+      geometry, RTC_BUFFER_TYPE_FLAGS, 0, RTC_FORMAT_UCHAR, sizeof(std::uint8_t), points - 1));
+  std::fill(flags, flags + (points - 1), std::uint8_t{0});
+  // bindings_ was reserved for every conductor, so this pointer stays valid.
+  bindings_.push_back(ConductorBinding{&conductor, static_cast<std::uint32_t>(index)});
+  rtcSetGeometryUserData(geometry, &bindings_.back());
+  rtcSetGeometryIntersectFilterFunction(geometry, conductor_filter);
+  rtcCommitGeometry(geometry);
+  const unsigned geom_id = rtcAttachGeometry(scene_, geometry);
+  rtcReleaseGeometry(geometry);
+  if (geom_id != index) throw Error("engine: unexpected conductor geometry id");
+  device.check("adding a conductor");
+}
+
+void EmbreeScene::attach_cylinders(const EmbreeDevice& device) {
+  RTCGeometry geometry = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_USER);
+  rtcSetGeometryUserPrimitiveCount(geometry, static_cast<unsigned>(scene().cylinders.size()));
+  rtcSetGeometryUserData(geometry, const_cast<std::vector<Cylinder>*>(&scene().cylinders));
+  rtcSetGeometryBoundsFunction(geometry, cylinders_bounds, nullptr);
+  rtcSetGeometryIntersectFunction(geometry, cylinders_intersect);
+  rtcCommitGeometry(geometry);
+  cylinders_geom_ = rtcAttachGeometry(scene_, geometry);
+  rtcReleaseGeometry(geometry);
+  device.check("adding poles and trees");
+}
+
+void EmbreeScene::attach_terrain(const EmbreeDevice& device) {
+  RTCGeometry geometry = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
+  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0,
+                                                               RTC_FORMAT_FLOAT3, 3 * sizeof(float),
+                                                               terrain_mesh_.vertices.size()));
+  for (std::size_t v = 0; v < terrain_mesh_.vertices.size(); ++v) {
+    for (int axis = 0; axis < 3; ++axis) {
+      vertices[3 * v + static_cast<std::size_t>(axis)] =
+          static_cast<float>(terrain_mesh_.vertices[v][axis]);
+    }
+  }
+  auto* triangles = static_cast<unsigned*>(
+      rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                              3 * sizeof(unsigned), terrain_mesh_.triangles.size()));
+  for (std::size_t t = 0; t < terrain_mesh_.triangles.size(); ++t) {
+    for (std::size_t corner = 0; corner < 3; ++corner) {
+      triangles[3 * t + corner] = terrain_mesh_.triangles[t][corner];
+    }
+  }
+  rtcCommitGeometry(geometry);
+  terrain_geom_ = rtcAttachGeometry(scene_, geometry);
+  rtcReleaseGeometry(geometry);
+  device.check("adding the terrain");
+}
+
+}  // namespace owsim

@@ -1,0 +1,64 @@
+#pragma once
+// The scene as Embree sees it (DESIGN.md "Engine decisions"), built once per scenario:
+//   conductors — one ROUND_LINEAR_CURVE geometry each, its radius the *capture radius*
+//                r_wire + r_beam(max range) (plus a float-safety margin), so every pulse whose beam
+//                can touch the wire reaches the intersection filter, which applies the exact
+//                double-precision rule of sensor/pulse_candidates.hpp and rejects the hit so
+//                traversal continues;
+//   cylinders  — one USER geometry (poles and trees), intersected in double precision;
+//   terrain    — one triangle mesh over the region the sensor can reach.
+// Float coordinates are offsets from the scenario origin, converted from double once here.
+// The scene is immutable after construction and may be traced from any number of threads.
+#include <embree3/rtcore.h>
+
+#include <Eigen/Geometry>
+#include <vector>
+
+#include "engine/embree_device.hpp"
+#include "geometry/scene.hpp"
+#include "sensor/pulse_candidates.hpp"
+#include "sensor/receiver.hpp"
+
+namespace owsim {
+
+// What a conductor's intersection filter is handed as its geometry user data.
+struct ConductorBinding {
+  const Conductor* conductor;
+  std::uint32_t object;
+};
+
+class EmbreeScene {
+ public:
+  // `region` bounds the terrain mesh (east, north); `max_range_m` sizes the wire capture radius.
+  EmbreeScene(const EmbreeDevice& device, const Scene& scene, const ReceiverParams& receiver,
+              const Eigen::AlignedBox2d& region, double max_range_m);
+  ~EmbreeScene();
+  EmbreeScene(const EmbreeScene&) = delete;
+  EmbreeScene& operator=(const EmbreeScene&) = delete;
+
+  [[nodiscard]] RTCScene handle() const { return scene_; }
+  [[nodiscard]] const Scene& scene() const { return *objects_; }
+  [[nodiscard]] const ReceiverParams& receiver() const { return receiver_; }
+  [[nodiscard]] const TriangleMesh& terrain_mesh() const { return terrain_mesh_; }
+  [[nodiscard]] double capture_radius_m(const Conductor& conductor) const;
+
+  // Geometry ids: conductors 0..C−1 (geomID = conductor index), then cylinders, then terrain.
+  [[nodiscard]] unsigned cylinders_geom_id() const { return cylinders_geom_; }
+  [[nodiscard]] unsigned terrain_geom_id() const { return terrain_geom_; }
+
+ private:
+  void attach_conductor(const EmbreeDevice& device, std::size_t index);
+  void attach_cylinders(const EmbreeDevice& device);
+  void attach_terrain(const EmbreeDevice& device);
+
+  const Scene* objects_;
+  ReceiverParams receiver_;
+  double max_range_m_;
+  TriangleMesh terrain_mesh_;
+  std::vector<ConductorBinding> bindings_;
+  RTCScene scene_ = nullptr;
+  unsigned cylinders_geom_ = RTC_INVALID_GEOMETRY_ID;
+  unsigned terrain_geom_ = RTC_INVALID_GEOMETRY_ID;
+};
+
+}  // namespace owsim

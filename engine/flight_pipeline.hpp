@@ -1,0 +1,26 @@
+#pragma once
+// A flight as a stream of frames (DESIGN.md "Flight pipeline"): tbb::parallel_pipeline with a
+// serial in-order source (frame indices), parallel frame simulation, and a serial in-order sink.
+// At most `frames_in_flight` frames exist at once, each in a FrameResult recycled from a fixed
+// pool, so memory stays flat however long the flight. The sink sees frames in index order.
+#include <cstdint>
+#include <functional>
+
+#include "engine/frame_simulator.hpp"
+#include "sensor/pose_source.hpp"
+
+namespace owsim {
+
+struct FlightRange {
+  std::int64_t first_frame = 0;
+  std::int64_t frame_count = 0;
+};
+
+// Called once per frame, in frame order, never concurrently. May throw: the pipeline stops and
+// the exception reaches the caller of run_flight.
+using FrameSink = std::function<void(const FrameResult&)>;
+
+void run_flight(const FrameSimulator& simulator, const PoseSource& poses, const FlightRange& range,
+                int frames_in_flight, const FrameSink& sink);
+
+}  // namespace owsim

@@ -1,0 +1,61 @@
+#pragma once
+// One frame of the sensor, simulated whole (DESIGN.md data flow: ScanPattern → FrameRays → Embree
+// trace → Receiver → pulse returns). A frame is the unit of work: it depends only on the scenario
+// and its index, so frames can be simulated in any order on any thread with the same bytes out.
+// Set up once (may allocate, may throw); simulate() reuses the caller's FrameResult buffers, so a
+// worker that keeps one FrameResult allocates nothing per frame after the first.
+#include <cstdint>
+#include <vector>
+
+#include "engine/frame_tracer.hpp"
+#include "sensor/mounting.hpp"
+#include "sensor/frame_view.hpp"
+#include "sensor/pose_source.hpp"
+#include "sensor/receiver.hpp"
+#include "sensor/scan_params.hpp"
+#include "sensor/scan_pattern.hpp"
+
+namespace owsim {
+
+struct FrameResult {
+  std::int64_t frame = 0;
+  FrameSweep sweep;
+  std::vector<Pulse> pulses;                 // the scan pattern, firing order
+  std::vector<PulseRay> rays;                // the central ray of each pulse (local ENU)
+  std::vector<std::uint8_t> active;          // 0 for the reference fiber
+  std::vector<PulseCandidates> candidates;   // what the trace found
+  // What the receiver recorded. For the reference fiber (inactive) count is 0 and counter1 holds
+  // the reference range counter of SENSOR-SPEC §8.
+  std::vector<PulseReturns> returns;
+
+  [[nodiscard]] FrameView view() const { return FrameView{frame, sweep, pulses, rays, returns}; }
+};
+
+struct FrameSimulatorParams {
+  ScanParams scan;
+  ReceiverParams receiver;
+  Mount mount;
+  std::uint64_t seed = 0;
+};
+
+class FrameSimulator {
+ public:
+  FrameSimulator(const FrameSimulatorParams& params, const EmbreeScene& scene, TraceApi api);
+
+  // Pattern, rays and trace (parallel over chunks) and the receiver post-pass for one frame.
+  void simulate(std::int64_t frame, const PoseSource& poses, FrameResult& out) const;
+  // The pattern and rays alone (no trace): what `trace-only` benchmarks and the brute-force
+  // reference start from.
+  void build_rays(std::int64_t frame, const PoseSource& poses, FrameResult& out) const;
+  // The receiver post-pass over out.candidates (after a trace by any tracer).
+  void receive(FrameResult& out) const;
+
+  [[nodiscard]] const FrameSimulatorParams& params() const { return params_; }
+  [[nodiscard]] const FrameTracer& tracer() const { return tracer_; }
+
+ private:
+  FrameSimulatorParams params_;
+  FrameTracer tracer_;
+};
+
+}  // namespace owsim

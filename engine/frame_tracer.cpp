@@ -1,0 +1,177 @@
+#include "engine/frame_tracer.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <array>
+#include <limits>
+
+#include "engine/trace_context.hpp"
+#include "geometry/error.hpp"
+#include "geometry/ray_triangle.hpp"
+#include "sensor/range_counter.hpp"
+
+namespace owsim {
+namespace {
+
+constexpr unsigned kNoHit = RTC_INVALID_GEOMETRY_ID;
+
+void set_ray(RTCRay& ray, const PulseRay& pulse, unsigned id, float tfar) {
+  ray.org_x = static_cast<float>(pulse.origin_enu_m.x());
+  ray.org_y = static_cast<float>(pulse.origin_enu_m.y());
+  ray.org_z = static_cast<float>(pulse.origin_enu_m.z());
+  ray.dir_x = static_cast<float>(pulse.dir_enu.x());
+  ray.dir_y = static_cast<float>(pulse.dir_enu.y());
+  ray.dir_z = static_cast<float>(pulse.dir_enu.z());
+  ray.tnear = 0.0f;
+  ray.tfar = tfar;
+  ray.time = 0.0f;
+  ray.mask = 0xFFFFFFFFu;  // Debian's Embree is built with ray masks
+  ray.id = id;
+  ray.flags = 0;
+}
+
+// The nearest solid hit Embree reported, turned into the pulse's solid candidate in double.
+void record_solid(const EmbreeScene& scene, const PulseRay& ray, unsigned geom_id, unsigned prim_id,
+                  const CylinderRecord& cylinder, PulseCandidates& out) {
+  if (geom_id == kNoHit) return;
+  const Scene& objects = scene.scene();
+  const ReceiverParams& receiver = scene.receiver();
+  if (geom_id == scene.cylinders_geom_id()) {
+    if (cylinder.prim_id != prim_id) throw Error("engine: cylinder hit record out of step");
+    out.set_solid(cylinder_candidate(ray, objects.cylinders[prim_id], cylinder.hit,
+                                     cylinder_object_index(objects, prim_id), receiver));
+    return;
+  }
+  if (geom_id == scene.terrain_geom_id()) {
+    const TriangleMesh& mesh = scene.terrain_mesh();
+    const auto& triangle = mesh.triangles[prim_id];
+    // Re-intersect the triangle Embree found in double. Float rounding may put the float ray
+    // on this triangle while the double ray passes just over its edge into the neighbour: then
+    // the range comes from this triangle's plane, still in double (Embree's float t would be off
+    // by the float rounding of origin and direction, millimetres at grazing incidence).
+    const Eigen::Vector3d& v0 = mesh.vertices[triangle[0]];
+    const Eigen::Vector3d& v1 = mesh.vertices[triangle[1]];
+    const Eigen::Vector3d& v2 = mesh.vertices[triangle[2]];
+    const auto exact = intersect_triangle(ray.origin_enu_m, ray.dir_enu, v0, v1, v2, 0.0,
+                                          std::numeric_limits<double>::infinity());
+    const Eigen::Vector3d normal = exact ? exact->normal : (v1 - v0).cross(v2 - v0).normalized();
+    const double range =
+        exact ? exact->t : normal.dot(v0 - ray.origin_enu_m) / normal.dot(ray.dir_enu);
+    out.set_solid(ground_candidate(ray, range, normal, objects.terrain.reflectivity,
+                                   ground_object_index(objects), receiver));
+  }
+}
+
+}  // namespace
+
+std::string_view to_string(TraceApi api) {
+  switch (api) {
+    case TraceApi::per_ray:
+      return "per_ray";
+    case TraceApi::stream:
+      return "stream";
+    case TraceApi::packet8:
+      return "packet8";
+  }
+  return "per_ray";
+}
+
+void FrameTracer::trace(std::span<const PulseRay> rays, std::span<const std::uint8_t> active,
+                        std::span<PulseCandidates> candidates) const {
+  const auto count = static_cast<unsigned>(rays.size());
+  tbb::parallel_for(tbb::blocked_range<unsigned>(0, count, kChunk),
+                    [&](const tbb::blocked_range<unsigned>& range) {
+                      for (unsigned begin = range.begin(); begin < range.end(); begin += kChunk) {
+                        const unsigned end = std::min(range.end(), begin + kChunk);
+                        trace_range(rays, active, candidates, begin, end);
+                      }
+                    });
+}
+
+void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const std::uint8_t> active,
+                              std::span<PulseCandidates> candidates, unsigned begin,
+                              unsigned end) const {
+  if (rays.size() != active.size() || rays.size() != candidates.size()) {
+    throw Error("engine: rays, active flags and candidate buffers differ in size");
+  }
+  std::array<CylinderRecord, kChunk> cylinder_hits;
+  std::array<RTCRayHit, kChunk> rayhits;
+  const double max_range = timeout_range_m(scene_->receiver().counter);
+  const auto tfar = static_cast<float>(max_range);
+
+  for (unsigned block = begin; block < end; block += kChunk) {
+    const unsigned block_end = std::min(end, block + kChunk);
+    TraceContext context;
+    rtcInitIntersectContext(&context.rtc);
+    context.scene = scene_;
+    context.rays = rays;
+    context.candidates = candidates;
+    context.cylinder_hits = cylinder_hits;
+    context.chunk_begin = block;
+    context.max_range_m = max_range;
+
+    // Gather the active rays of the block; inactive ones keep empty candidate lists.
+    unsigned n = 0;
+    for (unsigned id = block; id < block_end; ++id) {
+      candidates[id].clear();
+      if (active[id] == 0) continue;
+      set_ray(rayhits[n].ray, rays[id], id, tfar);
+      rayhits[n].hit.geomID = kNoHit;
+      rayhits[n].hit.instID[0] = kNoHit;
+      cylinder_hits[id - block].prim_id = kNoHit;
+      ++n;
+    }
+
+    switch (api_) {
+      case TraceApi::per_ray:
+        for (unsigned i = 0; i < n; ++i) rtcIntersect1(scene_->handle(), &context.rtc, &rayhits[i]);
+        break;
+      case TraceApi::stream:
+        context.rtc.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+        rtcIntersect1M(scene_->handle(), &context.rtc, rayhits.data(), n, sizeof(RTCRayHit));
+        break;
+      case TraceApi::packet8:
+        context.rtc.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+        for (unsigned first = 0; first < n; first += 8) {
+          alignas(32) RTCRayHit8 packet;
+          alignas(32) int valid[8];
+          for (unsigned lane = 0; lane < 8; ++lane) {
+            const unsigned i = first + lane;
+            valid[lane] = i < n ? -1 : 0;
+            const RTCRayHit& source = rayhits[i < n ? i : first];
+            packet.ray.org_x[lane] = source.ray.org_x;
+            packet.ray.org_y[lane] = source.ray.org_y;
+            packet.ray.org_z[lane] = source.ray.org_z;
+            packet.ray.dir_x[lane] = source.ray.dir_x;
+            packet.ray.dir_y[lane] = source.ray.dir_y;
+            packet.ray.dir_z[lane] = source.ray.dir_z;
+            packet.ray.tnear[lane] = source.ray.tnear;
+            packet.ray.tfar[lane] = source.ray.tfar;
+            packet.ray.time[lane] = 0.0f;
+            packet.ray.mask[lane] = 0xFFFFFFFFu;
+            packet.ray.id[lane] = source.ray.id;
+            packet.ray.flags[lane] = 0;
+            packet.hit.geomID[lane] = kNoHit;
+            packet.hit.instID[0][lane] = kNoHit;
+          }
+          rtcIntersect8(valid, scene_->handle(), &context.rtc, &packet);
+          for (unsigned lane = 0; lane < 8 && first + lane < n; ++lane) {
+            RTCRayHit& target = rayhits[first + lane];
+            target.hit.geomID = packet.hit.geomID[lane];
+            target.hit.primID = packet.hit.primID[lane];
+          }
+        }
+        break;
+    }
+
+    for (unsigned i = 0; i < n; ++i) {
+      const RTCRayHit& rayhit = rayhits[i];
+      const unsigned id = rayhit.ray.id;
+      record_solid(*scene_, rays[id], rayhit.hit.geomID, rayhit.hit.primID,
+                   cylinder_hits[id - block], candidates[id]);
+    }
+  }
+}
+
+}  // namespace owsim

@@ -1,0 +1,46 @@
+#pragma once
+// Traces a frame's pulses through the Embree scene (DESIGN.md "Batching"): the rays are split into
+// chunks handed to tbb::parallel_for, and each chunk goes through one of Embree's three query
+// forms, so benchmarks can compare them. Every pulse's result depends only on its own ray, so the
+// output is bit-identical whatever the thread count or the API.
+#include <cstdint>
+#include <span>
+#include <string_view>
+
+#include "engine/embree_scene.hpp"
+#include "sensor/pulse_candidates.hpp"
+
+namespace owsim {
+
+enum class TraceApi {
+  per_ray,  // rtcIntersect1 for each ray
+  stream,   // rtcIntersect1M over the chunk (coherent flag set)
+  packet8,  // rtcIntersect8 over groups of 8 rays
+};
+
+[[nodiscard]] std::string_view to_string(TraceApi api);
+
+class FrameTracer {
+ public:
+  static constexpr unsigned kChunk = 256;  // rays per task and per stream call
+
+  FrameTracer(const EmbreeScene& scene, TraceApi api) : scene_(&scene), api_(api) {}
+
+  // Traces rays[i] for every i with active[i] != 0 and fills candidates[i] (cleared first; an
+  // inactive pulse — the reference fiber — gets none). Spans must have equal sizes. Runs the
+  // chunks in parallel on the calling thread's TBB arena.
+  void trace(std::span<const PulseRay> rays, std::span<const std::uint8_t> active,
+             std::span<PulseCandidates> candidates) const;
+
+  // The same for rays [begin, end) on the calling thread only.
+  void trace_range(std::span<const PulseRay> rays, std::span<const std::uint8_t> active,
+                   std::span<PulseCandidates> candidates, unsigned begin, unsigned end) const;
+
+  [[nodiscard]] TraceApi api() const { return api_; }
+
+ private:
+  const EmbreeScene* scene_;
+  TraceApi api_;
+};
+
+}  // namespace owsim

@@ -1,0 +1,84 @@
+#pragma once
+// What every surface of the scene contributes to one pulse (SENSOR-SPEC §7 "Pinned per surface",
+// "Pinned occlusion"), shared by the Embree tracer and the brute-force reference tracer so both
+// apply the very same double-precision rules:
+//   wire   — a candidate when the ray passes within r_wire + r_beam(R) of the segment's axis,
+//            R the range to the closest approach; one candidate per conductor, its
+//            highest-energy segment.
+//   pole / tree — the central ray's hit on the cylinder; footprint from the ray–axis distance.
+//   ground — the central ray's hit; footprint 1.
+// The central ray stops at the nearest solid surface (pole, tree, ground) whether or not that
+// surface's echo reaches the threshold; wires beyond it are dropped, wires never occlude.
+//
+// Object indices: conductors 0..C−1, cylinders C..C+Y−1, the ground C+Y (scene_object_count − 1).
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+#include <span>
+
+#include "geometry/cylinder.hpp"
+#include "geometry/scene.hpp"
+#include "sensor/receiver.hpp"
+
+namespace owsim {
+
+// One pulse's central ray in the scenario's local ENU frame (double; dir has unit length).
+struct PulseRay {
+  Eigen::Vector3d origin_enu_m = Eigen::Vector3d::Zero();
+  Eigen::Vector3d dir_enu = Eigen::Vector3d::UnitY();
+};
+
+[[nodiscard]] inline std::uint32_t cylinder_object_index(const Scene& scene, std::size_t cylinder) {
+  return static_cast<std::uint32_t>(scene.conductors.size() + cylinder);
+}
+[[nodiscard]] inline std::uint32_t ground_object_index(const Scene& scene) {
+  return static_cast<std::uint32_t>(scene.conductors.size() + scene.cylinders.size());
+}
+
+// The candidate a wire segment gives, if the beam touches it  (SENSOR-SPEC §7, eq 7.1–7.13)
+[[nodiscard]] bool wire_segment_candidate(const PulseRay& ray, const Conductor& conductor,
+                                          std::size_t segment, std::uint32_t object,
+                                          const ReceiverParams& receiver, Candidate& out);
+// The candidate of a central-ray hit on a pole or tree  (SENSOR-SPEC §7 pinned per surface)
+[[nodiscard]] Candidate cylinder_candidate(const PulseRay& ray, const Cylinder& cylinder,
+                                           const CylinderHit& hit, std::uint32_t object,
+                                           const ReceiverParams& receiver);
+// The candidate of a central-ray hit on the ground  (SENSOR-SPEC §7 pinned per surface)
+[[nodiscard]] Candidate ground_candidate(const PulseRay& ray, double range_m,
+                                         const Eigen::Vector3d& normal, double reflectivity,
+                                         std::uint32_t object, const ReceiverParams& receiver);
+
+// The candidates one pulse collects while it is traced: at most kMaxWires conductors (the
+// strongest kept when more are met) and the nearest solid hit. Fixed size: no allocation.
+class PulseCandidates {
+ public:
+  static constexpr int kMaxWires = 8;
+
+  void clear() {
+    wire_count_ = 0;
+    has_solid_ = false;
+  }
+  // A wire segment's candidate: kept if it is its conductor's strongest so far.
+  void offer_wire(const Candidate& candidate);
+  // The nearest solid surface the central ray hit (the caller guarantees it is the nearest).
+  void set_solid(const Candidate& candidate) {
+    solid_ = candidate;
+    has_solid_ = true;
+  }
+  [[nodiscard]] bool has_solid() const { return has_solid_; }
+  [[nodiscard]] const Candidate& solid() const { return solid_; }
+  [[nodiscard]] std::span<const Candidate> wires() const {
+    return {wires_.data(), static_cast<std::size_t>(wire_count_)};
+  }
+  // The candidates the receiver sees: wires nearer than the solid hit, then the solid hit.
+  // Returns the used prefix of `out`.
+  std::span<Candidate> gather(std::array<Candidate, kMaxWires + 1>& out) const;
+
+ private:
+  std::array<Candidate, kMaxWires> wires_{};
+  int wire_count_ = 0;
+  Candidate solid_{};
+  bool has_solid_ = false;
+};
+
+}  // namespace owsim
