@@ -11,5 +11,6 @@ struct CommandResult {
 
 void add_pattern_command(CLI::App& app, CommandResult& result);
 void add_info_command(CLI::App& app, CommandResult& result);
+void add_run_command(CLI::App& app, CommandResult& result);
 
 }  // namespace owsim::cli

@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   owsim::cli::CommandResult result;
   owsim::cli::add_pattern_command(app, result);
+  owsim::cli::add_run_command(app, result);
   owsim::cli::add_info_command(app, result);
   try {
     app.parse(argc, argv);

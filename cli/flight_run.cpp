@@ -1,0 +1,171 @@
+#include "cli/flight_run.hpp"
+
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "engine/embree_device.hpp"
+#include "engine/embree_scene.hpp"
+#include "engine/flight_pipeline.hpp"
+#include "engine/frame_simulator.hpp"
+#include "geometry/error.hpp"
+#include "io/scenario_loader.hpp"
+#include "io/scene_builder.hpp"
+#include "io/trajectory_loader.hpp"
+#include "owsim/version.hpp"
+#include "sensor/range_counter.hpp"
+
+namespace owsim::cli {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// How many whole frames the run simulates: --frames, else --duration, else the scenario's
+// duration_s, else as many as the trajectory holds; never past the trajectory's end.
+std::int64_t frame_count(const RunOptions& options, const Scenario& scenario,
+                         const Trajectory& trajectory) {
+  const ScanParams& scan = scenario.scan;
+  const double frame_s = scan.frame_duration_s();
+  if (scan.start_s < trajectory.start_s()) {
+    throw input_error(scenario.path.string() + ": trajectory.start_s",
+                      "the sensor starts at " + std::to_string(scan.start_s) +
+                          " s, before the trajectory begins (" +
+                          std::to_string(trajectory.start_s()) + " s)");
+  }
+  const auto available =
+      static_cast<std::int64_t>(std::floor((trajectory.end_s() - scan.start_s) / frame_s));
+  std::int64_t frames = available;
+  if (options.frames) {
+    frames = *options.frames;
+  } else if (const auto duration = options.duration_s ? options.duration_s
+                                                      : scenario.trajectory.duration_s) {
+    frames = static_cast<std::int64_t>(std::floor(*duration / frame_s + 1e-9));
+  }
+  if (frames < 1) throw Error("the run is shorter than one frame (" + std::to_string(frame_s) + " s)");
+  if (frames > available) {
+    throw Error(scenario.path.string() + ": the trajectory ends at " +
+                std::to_string(trajectory.end_s()) + " s: only " + std::to_string(available) +
+                " frames fit, " + std::to_string(frames) + " were asked for");
+  }
+  return frames;
+}
+
+// The east/north extent of the trajectory over the run (sampled at every frame start).
+Eigen::AlignedBox2d flight_extent(const Trajectory& trajectory, const ScanParams& scan,
+                                  std::int64_t frames) {
+  Eigen::AlignedBox2d box;
+  for (std::int64_t f = 0; f <= frames; ++f) {
+    const Pose pose = trajectory.pose_at(pulse_time_s(scan, std::min(f, frames - 1),
+                                                      f == frames ? scan.pulses_per_frame() - 1 : 0));
+    box.extend(pose.position_enu_m.head<2>());
+  }
+  return box;
+}
+
+Eigen::AlignedBox2d scene_extent(const Scene& scene) {
+  Eigen::AlignedBox2d box;
+  for (const Conductor& conductor : scene.conductors) {
+    for (const auto& point : conductor.points_enu_m) box.extend(point.head<2>());
+  }
+  for (const Cylinder& cylinder : scene.cylinders) box.extend(cylinder.base_enu_m.head<2>());
+  return box;
+}
+
+class ProgressLine {
+ public:
+  ProgressLine(bool enabled, std::int64_t frames, int pulses_per_frame)
+      : enabled_(enabled && isatty(STDERR_FILENO) != 0),
+        frames_(frames),
+        pulses_per_frame_(pulses_per_frame),
+        start_(Clock::now()),
+        last_(start_) {}
+
+  void frame_done(std::int64_t done) {
+    if (!enabled_) return;
+    const auto now = Clock::now();
+    if (done < frames_ && now - last_ < std::chrono::milliseconds(250)) return;
+    last_ = now;
+    const double elapsed = std::chrono::duration<double>(now - start_).count();
+    const double rate = elapsed > 0 ? static_cast<double>(done * pulses_per_frame_) / elapsed : 0;
+    const double eta = done > 0 ? elapsed * static_cast<double>(frames_ - done) / static_cast<double>(done) : 0;
+    std::fprintf(stderr, "\rframe %lld/%lld  %.2f Mpulses/s  ETA %.0f s   ",
+                 static_cast<long long>(done), static_cast<long long>(frames_), rate / 1e6, eta);
+    if (done == frames_) std::fprintf(stderr, "\n");
+  }
+
+ private:
+  bool enabled_;
+  std::int64_t frames_;
+  int pulses_per_frame_;
+  Clock::time_point start_;
+  Clock::time_point last_;
+};
+
+}  // namespace
+
+RunReport run_flight_scenario(const RunOptions& options) {
+  Scenario scenario = load_scenario(options.scenario);
+  if (options.seed) scenario.seed = *options.seed;
+  if (options.no_noise) scenario.receiver.range_noise_sigma_m = 0.0;
+
+  const int threads = options.threads > 0 ? options.threads : tbb::info::default_concurrency();
+  tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism,
+                                  static_cast<std::size_t>(threads));
+
+  const LocalFrame local_frame(scenario.origin);
+  const Scene scene = build_scene(scenario);
+  const Trajectory trajectory = load_trajectory(scenario, local_frame);
+  const std::int64_t frames = frame_count(options, scenario, trajectory);
+
+  const double max_range = timeout_range_m(scenario.receiver.counter);
+  Eigen::AlignedBox2d reach = flight_extent(trajectory, scenario.scan, frames);
+  const Eigen::AlignedBox2d flown = reach;
+  reach.min().array() -= max_range;
+  reach.max().array() += max_range;
+
+  const EmbreeDevice device;
+  const EmbreeScene embree_scene(device, scene, scenario.receiver, reach, max_range);
+  FrameSimulatorParams params{scenario.scan, scenario.receiver, scenario.mount, scenario.seed};
+  const FrameSimulator simulator(params, embree_scene, options.trace_api);
+
+  FlightOutputOptions output_options;
+  output_options.directory = options.out ? *options.out : std::filesystem::path("out") / scenario.name;
+  output_options.outputs = options.outputs;
+  output_options.map_region = flown.merged(scene_extent(scene));
+  FlightOutputs outputs(output_options, scene, scenario.scan, local_frame);
+
+  ProgressLine progress(options.progress, frames, scenario.scan.pulses_per_frame());
+  const auto start = Clock::now();
+  std::int64_t done = 0;
+  run_flight(simulator, trajectory, FlightRange{0, frames}, std::max(2, 2 * threads),
+             [&](const FrameResult& frame) {
+               outputs.add_frame(frame.view(), trajectory.pose_at(frame.pulses.front().time_s));
+               progress.frame_done(++done);
+             });
+  const double wall_s = std::chrono::duration<double>(Clock::now() - start).count();
+
+  RunReport report;
+  report.directory = output_options.directory;
+  report.frames = frames;
+  report.pulses = static_cast<std::uint64_t>(frames) *
+                  static_cast<std::uint64_t>(scenario.scan.pulses_per_frame());
+  report.wall_s = wall_s;
+  report.pulses_per_s = wall_s > 0 ? static_cast<double>(report.pulses) / wall_s : 0.0;
+  report.realtime_factor = report.pulses_per_s / scenario.scan.prf_hz;
+  report.threads = threads;
+
+  outputs.finish({{"scenario", scenario.name},
+                  {"seed", scenario.seed},
+                  {"wall_s", report.wall_s},
+                  {"pulses_per_s", report.pulses_per_s},
+                  {"realtime_factor", report.realtime_factor},
+                  {"threads", threads},
+                  {"version", version_string}});
+  return report;
+}
+
+}  // namespace owsim::cli

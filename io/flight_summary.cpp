@@ -1,0 +1,76 @@
+#include "io/flight_summary.hpp"
+
+#include <algorithm>
+
+namespace owsim {
+namespace {
+
+nlohmann::json optional_number(const std::optional<double>& value) {
+  return value ? nlohmann::json(*value) : nlohmann::json(nullptr);
+}
+
+}  // namespace
+
+FlightSummary::FlightSummary(const Scene& scene) {
+  objects_.reserve(scene.conductors.size() + scene.cylinders.size());
+  for (const Conductor& conductor : scene.conductors) {
+    ObjectTruth& truth = objects_.emplace_back();
+    truth.id = conductor.id;
+    truth.surface = SurfaceClass::wire;
+  }
+  for (const Cylinder& cylinder : scene.cylinders) {
+    ObjectTruth& truth = objects_.emplace_back();
+    truth.id = cylinder.id;
+    truth.surface = cylinder.surface;
+  }
+}
+
+void FlightSummary::add_frame(std::int64_t frame, std::span<const Pulse> pulses,
+                              std::span<const PulseReturns> returns) {
+  ++frames_;
+  pulses_ += pulses.size();
+  for (std::size_t k = 0; k < returns.size(); ++k) {
+    const PulseReturns& pulse_returns = returns[k];
+    if (pulse_returns.count >= 2) ++second_returns_;
+    for (int r = 0; r < pulse_returns.count; ++r) {
+      const Return& ret = pulse_returns.returns[r];
+      ++returns_by_class_[std::min<std::size_t>(ret.surface, 3)];
+      if (ret.object_index >= objects_.size()) continue;  // the ground
+      ObjectTruth& truth = objects_[ret.object_index];
+      ++truth.returns;
+      if (truth.last_frame_seen != frame) {
+        ++truth.frames_seen;
+        truth.last_frame_seen = frame;
+      }
+      if (!truth.first_seen_s) {
+        truth.first_seen_s = pulses[k].time_s;
+        truth.first_seen_range_m = ret.true_range_m;
+      }
+      truth.min_range_m = std::min(truth.min_range_m.value_or(ret.true_range_m), ret.true_range_m);
+    }
+  }
+}
+
+nlohmann::json FlightSummary::to_json() const {
+  nlohmann::json objects = nlohmann::json::array();
+  for (const ObjectTruth& truth : objects_) {
+    objects.push_back({{"id", truth.id},
+                       {"class", std::string(to_string(truth.surface))},
+                       {"returns", truth.returns},
+                       {"frames_seen", truth.frames_seen},
+                       {"first_seen_s", optional_number(truth.first_seen_s)},
+                       {"first_seen_range_m", optional_number(truth.first_seen_range_m)},
+                       {"min_range_m", optional_number(truth.min_range_m)}});
+  }
+  return {{"frames", frames_},
+          {"pulses", pulses_},
+          {"returns",
+           {{"wire", returns_of(SurfaceClass::wire)},
+            {"pole", returns_of(SurfaceClass::pole)},
+            {"tree", returns_of(SurfaceClass::tree)},
+            {"ground", returns_of(SurfaceClass::ground)}}},
+          {"second_returns", second_returns_},
+          {"objects", objects}};
+}
+
+}  // namespace owsim
