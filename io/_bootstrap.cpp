@@ -1,1 +1,0 @@
-#include "io/little_endian.hpp"
