@@ -11,7 +11,9 @@
 #include "io/hellas_word.hpp"
 #include "io/milows_word.hpp"
 #include "io/word_file.hpp"
+#include "sensor/hellas_scan.hpp"
 #include "sensor/range_counter.hpp"
+#include "sensor/scan_pattern.hpp"
 
 namespace owsim {
 namespace {
@@ -21,12 +23,8 @@ struct TimeTagClock {
   double tick_s;
   std::uint32_t modulus;
 };
-constexpr TimeTagClock kMilowsClock{100e-6, 65536};  // §8 eq 10.1: u16, 100 µs per tick
-constexpr TimeTagClock kHellasClock{0.5e-3, 16384};  // §8: 14 bits, 0.5 ms per tick
-
-// HELLAS header word: β = code · 0.01° − 20.48°  (SENSOR-SPEC §8, pinned HELLAS details)
-constexpr double kHeaderBetaStepDeg = 0.01;
-constexpr double kHeaderBetaOffsetDeg = 20.48;
+constexpr TimeTagClock kMilowsClock{kMilowsTimeTagTickS, kMilowsTimeTagModulus};
+constexpr TimeTagClock kHellasClock{kHellasTimeTagTickS, kHellasTimeTagModulus};
 
 constexpr std::size_t kChunkWords = std::size_t{1} << 16;
 
@@ -531,8 +529,8 @@ void check_hellas(const std::filesystem::path& path, const ScanParams& scan, Iss
     if (word.select) {
       ++report.header_words;
       if (index == 0) {
-        report.header = HellasHeaderSummary{
-            word.counter, word.counter * kHeaderBetaStepDeg - kHeaderBetaOffsetDeg};
+        report.header =
+            HellasHeaderSummary{word.counter, hellas_beta_from_header_code(word.counter)};
       } else {
         log.add(index, RecordingIssueKind::extra_header,
                 "header word (Select = 1) after word 0; not counted as a pulse");
