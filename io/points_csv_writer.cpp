@@ -1,0 +1,146 @@
+#include "io/points_csv_writer.hpp"
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <utility>
+
+#include "geometry/error.hpp"
+
+namespace owsim {
+namespace {
+
+constexpr std::size_t kFlushBytes = std::size_t{1} << 20;
+constexpr std::size_t kRowBytesMax = 1024;  // a row without its object cell, finite values
+
+// Drops the sign of a formatted zero ("-0.0000" → "0.0000") so the output has one spelling.
+void append_unsigned_zero(std::string& out, const char* first, const char* last) {
+  if (*first == '-') {
+    bool zero = true;
+    for (const char* c = first + 1; c != last; ++c) {
+      if (*c != '0' && *c != '.') {
+        zero = false;
+        break;
+      }
+    }
+    if (zero) ++first;
+  }
+  out.append(first, last);
+}
+
+}  // namespace
+
+void append_csv_fixed(std::string& out, double value, int decimals) {
+  if (!std::isfinite(value)) return;
+  std::array<char, 352> text{};  // the longest double in fixed notation is ~330 characters
+  const auto [end, error] = std::to_chars(text.data(), text.data() + text.size(), value,
+                                          std::chars_format::fixed, decimals);
+  if (error != std::errc{}) throw Error("CSV: cannot format a number");
+  append_unsigned_zero(out, text.data(), end);
+}
+
+void append_csv_significant(std::string& out, double value, int digits) {
+  if (!std::isfinite(value)) return;
+  std::array<char, 64> text{};
+  const auto [end, error] = std::to_chars(text.data(), text.data() + text.size(), value,
+                                          std::chars_format::general, digits);
+  if (error != std::errc{}) throw Error("CSV: cannot format a number");
+  append_unsigned_zero(out, text.data(), end);
+}
+
+void append_csv_integer(std::string& out, std::int64_t value) {
+  std::array<char, 24> text{};
+  const auto [end, error] = std::to_chars(text.data(), text.data() + text.size(), value);
+  out.append(text.data(), end);
+}
+
+std::string csv_cell(std::string_view text) {
+  if (text.find_first_of(",\"\r\n") == std::string_view::npos) return std::string(text);
+  std::string cell = "\"";
+  for (const char c : text) {
+    if (c == '"') cell += '"';
+    cell += c;
+  }
+  cell += '"';
+  return cell;
+}
+
+PointsCsvWriter::PointsCsvWriter(std::filesystem::path final_path,
+                                 std::vector<std::string> object_ids, AtomicOutputOptions options)
+    : file_(std::move(final_path), options) {
+  object_cells_.reserve(object_ids.size());
+  std::size_t longest_cell = 0;
+  for (const std::string& id : object_ids) {
+    object_cells_.push_back(csv_cell(id));
+    longest_cell = std::max(longest_cell, object_cells_.back().size());
+  }
+  // Room for one more row beyond the flush mark, so appending a row never reallocates.
+  buffer_.reserve(kFlushBytes + kRowBytesMax + longest_cell);
+  buffer_ += kPointsCsvHeader;
+  buffer_ += '\n';
+}
+
+void PointsCsvWriter::append_row(const PointRecord& point) {
+  if (point.object_index != kNoObject && point.object_index >= object_cells_.size()) {
+    throw input_error(file_.final_path().string(),
+                      "object index " + std::to_string(point.object_index) +
+                          " is not in the table of " + std::to_string(object_cells_.size()) +
+                          " object ids");
+  }
+  std::string& out = buffer_;
+  append_csv_integer(out, point.frame);
+  out += ',';
+  append_csv_integer(out, point.pulse);
+  out += ',';
+  append_csv_integer(out, point.line);
+  out += ',';
+  append_csv_integer(out, point.fiber);
+  out += ',';
+  append_csv_integer(out, point.return_number);
+  out += ',';
+  append_csv_fixed(out, point.time_s, 9);
+  out += ',';
+  append_csv_fixed(out, point.range_m, 4);
+  out += ',';
+  append_csv_integer(out, point.counter);
+  for (int axis = 0; axis < 3; ++axis) {
+    out += ',';
+    append_csv_fixed(out, point.enu_m[axis], 4);
+  }
+  out += ',';
+  append_csv_fixed(out, point.geodetic.lat_deg, 9);
+  out += ',';
+  append_csv_fixed(out, point.geodetic.lon_deg, 9);
+  out += ',';
+  append_csv_fixed(out, point.geodetic.h_m, 4);
+  out += ',';
+  out += point.surface ? to_string(*point.surface) : std::string_view("unknown");
+  out += ',';
+  if (point.object_index != kNoObject) out += object_cells_[point.object_index];
+  out += ',';
+  append_csv_significant(out, point.energy_rel, 9);
+  out += ',';
+  append_csv_fixed(out, point.incidence_deg, 4);
+  out += '\n';
+}
+
+void PointsCsvWriter::write(std::span<const PointRecord> points) {
+  for (const PointRecord& point : points) {
+    append_row(point);
+    ++points_written_;
+    if (buffer_.size() >= kFlushBytes) flush_buffer();
+  }
+}
+
+void PointsCsvWriter::flush_buffer() {
+  file_.write(buffer_);
+  buffer_.clear();
+}
+
+void PointsCsvWriter::finish() {
+  flush_buffer();
+  file_.commit();
+}
+
+}  // namespace owsim
