@@ -136,6 +136,8 @@ RunReport run_flight_scenario(const RunOptions& options) {
   output_options.directory = options.out ? *options.out : std::filesystem::path("out") / scenario.name;
   output_options.outputs = options.outputs;
   output_options.map_region = flown.merged(scene_extent(scene));
+  output_options.map_region.min().array() -= 50.0;  // a margin around what was flown and built
+  output_options.map_region.max().array() += 50.0;
   FlightOutputs outputs(output_options, scene, scenario.scan, local_frame);
 
   ProgressLine progress(options.progress, frames, scenario.scan.pulses_per_frame());

@@ -9,6 +9,7 @@
 #include "io/frame_words.hpp"
 #include "io/las_writer.hpp"
 #include "io/ply_writer.hpp"
+#include "io/quicklook.hpp"
 #include "io/points_csv_writer.hpp"
 #include "io/trajectory_csv_writer.hpp"
 #include "io/word_file.hpp"
@@ -113,6 +114,14 @@ FlightOutputs::FlightOutputs(const FlightOutputOptions& options, const Scene& sc
     trajectory_ =
         std::make_unique<TrajectoryCsvWriter>(options_.directory / "trajectory.csv", local_frame);
   }
+  if (wants(OutputKind::quicklook)) {
+    QuicklookOptions quicklook;
+    quicklook.every_nth_frame = options_.quicklook_every_nth_frame;
+    const Eigen::AlignedBox2d region =
+        options_.map_region.isEmpty() ? quicklook_map_region(scene, {}) : options_.map_region;
+    quicklook_ = std::make_unique<Quicklook>(options_.directory / "quicklook", scene, scan_, region,
+                                             quicklook);
+  }
 }
 
 FlightOutputs::~FlightOutputs() = default;
@@ -125,12 +134,17 @@ void FlightOutputs::add_frame(const FrameView& frame, const Pose& frame_start) {
     for (auto& sink : point_sinks_) sink->write(points_);
   }
   if (trajectory_) trajectory_->write(frame_start);
+  if (quicklook_) {
+    quicklook_->add_trajectory_point(frame_start.position_enu_m);
+    quicklook_->add_frame(frame);
+  }
 }
 
 void FlightOutputs::finish(const nlohmann::json& run_facts) {
   if (words_) words_->commit();
   for (auto& sink : point_sinks_) sink->finish();
   if (trajectory_) trajectory_->finish();
+  if (quicklook_) quicklook_->finish();
   if (wants(OutputKind::summary)) {
     nlohmann::json summary = run_facts;
     summary.update(summary_.to_json());

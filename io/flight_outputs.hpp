@@ -40,6 +40,7 @@ struct FlightOutputOptions {
 
 class WordSink;
 class TrajectoryCsvWriter;
+class Quicklook;
 
 class FlightOutputs {
  public:
@@ -68,6 +69,7 @@ class FlightOutputs {
   std::unique_ptr<WordSink> words_;
   std::vector<std::unique_ptr<PointSink>> point_sinks_;
   std::unique_ptr<TrajectoryCsvWriter> trajectory_;
+  std::unique_ptr<Quicklook> quicklook_;
   std::vector<PointRecord> points_;  // reused per frame
 };
 
