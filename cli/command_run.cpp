@@ -3,6 +3,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/flight_run.hpp"
+#include "cli/option_checks.hpp"
 
 namespace owsim::cli {
 
@@ -11,15 +12,17 @@ void add_run_command(CLI::App& app, CommandResult& /*result*/) {
   auto outputs = std::make_shared<std::string>();
   auto quiet = std::make_shared<bool>(false);
   CLI::App* command = app.add_subcommand("run", "simulate a flight: sensor words, points, summary");
-  command->add_option("scenario", options->scenario, "scenario file (YAML)")->required()->check(CLI::ExistingFile);
+  command->add_option("scenario", options->scenario, "scenario file (YAML)")
+      ->required()
+      ->check(CLI::ExistingFile);
   command->add_option("--out", options->out, "output folder (default out/<scenario name>/)");
   auto* frames = command->add_option("--frames", options->frames, "number of frames to simulate")
-                     ->check(CLI::PositiveNumber);
+                     ->check(positive_number());
   command->add_option("--duration", options->duration_s, "seconds of flight to simulate")
-      ->check(CLI::PositiveNumber)
+      ->check(positive_number())
       ->excludes(frames);
   command->add_option("--threads", options->threads, "worker threads (default: every core)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   command->add_option("--seed", options->seed, "override the scenario's seed");
   command->add_option("--outputs", *outputs,
                       "comma list of d64, points, trajectory, summary, quicklook (default: all)");
@@ -30,7 +33,9 @@ void add_run_command(CLI::App& app, CommandResult& /*result*/) {
     options->progress = !*quiet;
     const RunReport report = run_flight_scenario(*options);
     if (!*quiet) {
-      fmt::print(stderr, "{} frames, {} pulses in {:.2f} s ({:.0f} pulses/s, {:.2f}× real time, {} threads) → {}\n",
+      fmt::print(stderr,
+                 "{} frames, {} pulses in {:.2f} s ({:.0f} pulses/s, {:.2f}× real time, {} "
+                 "threads) → {}\n",
                  report.frames, report.pulses, report.wall_s, report.pulses_per_s,
                  report.realtime_factor, report.threads, report.directory.string());
     }

@@ -41,11 +41,15 @@ std::int64_t frame_count(const RunOptions& options, const Scenario& scenario,
   std::int64_t frames = available;
   if (options.frames) {
     frames = *options.frames;
-  } else if (const auto duration = options.duration_s ? options.duration_s
-                                                      : scenario.trajectory.duration_s) {
+  } else if (const auto duration =
+                 options.duration_s ? options.duration_s : scenario.trajectory.duration_s) {
     frames = static_cast<std::int64_t>(std::floor(*duration / frame_s + 1e-9));
   }
-  if (frames < 1) throw Error("the run is shorter than one frame (" + std::to_string(frame_s) + " s)");
+  if (frames < 1) {
+    throw input_error(
+        options.duration_s ? "--duration" : scenario.path.string() + ": trajectory.duration_s",
+        "the run is shorter than one frame (" + std::to_string(frame_s) + " s)");
+  }
   if (frames > available) {
     throw Error(scenario.path.string() + ": the trajectory ends at " +
                 std::to_string(trajectory.end_s()) + " s: only " + std::to_string(available) +
@@ -59,8 +63,8 @@ Eigen::AlignedBox2d flight_extent(const Trajectory& trajectory, const ScanParams
                                   std::int64_t frames) {
   Eigen::AlignedBox2d box;
   for (std::int64_t f = 0; f <= frames; ++f) {
-    const Pose pose = trajectory.pose_at(pulse_time_s(scan, std::min(f, frames - 1),
-                                                      f == frames ? scan.pulses_per_frame() - 1 : 0));
+    const Pose pose = trajectory.pose_at(
+        pulse_time_s(scan, std::min(f, frames - 1), f == frames ? scan.pulses_per_frame() - 1 : 0));
     box.extend(pose.position_enu_m.head<2>());
   }
   return box;
@@ -91,7 +95,8 @@ class ProgressLine {
     last_ = now;
     const double elapsed = std::chrono::duration<double>(now - start_).count();
     const double rate = elapsed > 0 ? static_cast<double>(done * pulses_per_frame_) / elapsed : 0;
-    const double eta = done > 0 ? elapsed * static_cast<double>(frames_ - done) / static_cast<double>(done) : 0;
+    const double eta =
+        done > 0 ? elapsed * static_cast<double>(frames_ - done) / static_cast<double>(done) : 0;
     std::fprintf(stderr, "\rframe %lld/%lld  %.2f Mpulses/s  ETA %.0f s   ",
                  static_cast<long long>(done), static_cast<long long>(frames_), rate / 1e6, eta);
     if (done == frames_) std::fprintf(stderr, "\n");
@@ -105,49 +110,76 @@ class ProgressLine {
   Clock::time_point last_;
 };
 
-}  // namespace
-
-RunReport run_flight_scenario(const RunOptions& options) {
+// The scenario file with --seed and --no-noise applied.
+Scenario scenario_of_run(const RunOptions& options) {
   Scenario scenario = load_scenario(options.scenario);
   if (options.seed) scenario.seed = *options.seed;
   if (options.no_noise) scenario.receiver.range_noise_sigma_m = 0.0;
+  return scenario;
+}
 
+// What the sensor can reach over the run: the flown extent widened by the timeout range.
+Eigen::AlignedBox2d reach_of(const Eigen::AlignedBox2d& flown, double max_range_m) {
+  Eigen::AlignedBox2d reach = flown;
+  reach.min().array() -= max_range_m;
+  reach.max().array() += max_range_m;
+  return reach;
+}
+
+}  // namespace
+
+FlightSetup::FlightSetup(const RunOptions& options)
+    : scenario(scenario_of_run(options)),
+      local_frame(scenario.origin),
+      scene(build_scene(scenario)),
+      trajectory(load_trajectory(scenario, local_frame)),
+      frames(frame_count(options, scenario, trajectory)),
+      flown(flight_extent(trajectory, scenario.scan, frames)),
+      embree_scene(device, scene, scenario.receiver,
+                   reach_of(flown, timeout_range_m(scenario.receiver.counter)),
+                   timeout_range_m(scenario.receiver.counter)),
+      simulator(
+          FrameSimulatorParams{scenario.scan, scenario.receiver, scenario.mount, scenario.seed},
+          embree_scene, options.trace_api) {}
+
+FlightOutputOptions flight_output_options(const FlightSetup& setup, const RunOptions& options) {
+  FlightOutputOptions output_options;
+  output_options.directory =
+      options.out ? *options.out : std::filesystem::path("out") / setup.scenario.name;
+  output_options.outputs = options.outputs;
+  output_options.map_region = setup.flown.merged(scene_extent(setup.scene));
+  output_options.map_region.min().array() -= 50.0;  // a margin around what was flown and built
+  output_options.map_region.max().array() += 50.0;
+  return output_options;
+}
+
+void simulate_frames(const FrameSimulator& simulator, const FlightSetup& setup,
+                     const FlightRange& range, int threads, FlightOutputs& outputs,
+                     const std::function<void(std::int64_t)>& frame_done) {
+  std::int64_t done = 0;
+  run_flight(
+      simulator, setup.trajectory, range, std::max(2, 2 * threads), [&](const FrameResult& frame) {
+        outputs.add_frame(frame.view(), setup.trajectory.pose_at(frame.pulses.front().time_s));
+        ++done;
+        if (frame_done) frame_done(done);
+      });
+}
+
+RunReport run_flight_scenario(const RunOptions& options) {
   const int threads = options.threads > 0 ? options.threads : tbb::info::default_concurrency();
   tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism,
                                   static_cast<std::size_t>(threads));
 
-  const LocalFrame local_frame(scenario.origin);
-  const Scene scene = build_scene(scenario);
-  const Trajectory trajectory = load_trajectory(scenario, local_frame);
-  const std::int64_t frames = frame_count(options, scenario, trajectory);
-
-  const double max_range = timeout_range_m(scenario.receiver.counter);
-  Eigen::AlignedBox2d reach = flight_extent(trajectory, scenario.scan, frames);
-  const Eigen::AlignedBox2d flown = reach;
-  reach.min().array() -= max_range;
-  reach.max().array() += max_range;
-
-  const EmbreeDevice device;
-  const EmbreeScene embree_scene(device, scene, scenario.receiver, reach, max_range);
-  FrameSimulatorParams params{scenario.scan, scenario.receiver, scenario.mount, scenario.seed};
-  const FrameSimulator simulator(params, embree_scene, options.trace_api);
-
-  FlightOutputOptions output_options;
-  output_options.directory = options.out ? *options.out : std::filesystem::path("out") / scenario.name;
-  output_options.outputs = options.outputs;
-  output_options.map_region = flown.merged(scene_extent(scene));
-  output_options.map_region.min().array() -= 50.0;  // a margin around what was flown and built
-  output_options.map_region.max().array() += 50.0;
-  FlightOutputs outputs(output_options, scene, scenario.scan, local_frame);
+  const FlightSetup setup(options);
+  const Scenario& scenario = setup.scenario;
+  const std::int64_t frames = setup.frames;
+  const FlightOutputOptions output_options = flight_output_options(setup, options);
+  FlightOutputs outputs(output_options, setup.scene, scenario.scan, setup.local_frame);
 
   ProgressLine progress(options.progress, frames, scenario.scan.pulses_per_frame());
   const auto start = Clock::now();
-  std::int64_t done = 0;
-  run_flight(simulator, trajectory, FlightRange{0, frames}, std::max(2, 2 * threads),
-             [&](const FrameResult& frame) {
-               outputs.add_frame(frame.view(), trajectory.pose_at(frame.pulses.front().time_s));
-               progress.frame_done(++done);
-             });
+  simulate_frames(setup.simulator, setup, FlightRange{0, frames}, threads, outputs,
+                  [&](std::int64_t done) { progress.frame_done(done); });
   const double wall_s = std::chrono::duration<double>(Clock::now() - start).count();
 
   RunReport report;

@@ -1,7 +1,6 @@
 // owsim — the command-line tool. Library code throws owsim::Error; only here does an error become
 // one line on stderr and a non-zero exit status.
 #include <CLI/CLI.hpp>
-
 #include <exception>
 #include <iostream>
 
@@ -13,6 +12,10 @@ int main(int argc, char** argv) {
   CLI::App app{"owsim — MilOWS/HELLAS obstacle-warning LiDAR simulator"};
   app.set_version_flag("--version", std::string("owsim ") + owsim::version_string);
   app.require_subcommand(1);
+  // One line per error, as for every other error owsim reports.
+  app.failure_message([](const CLI::App*, const CLI::Error& e) {
+    return std::string("owsim: ") + e.what() + " (see --help)\n";
+  });
   owsim::cli::CommandResult result;
   owsim::cli::add_pattern_command(app, result);
   owsim::cli::add_run_command(app, result);
