@@ -14,12 +14,13 @@ void BruteForceTracer::trace(const PulseRay& ray, PulseCandidates& out) const {
   const Scene& scene = *scene_;
   const double max_range = timeout_range_m(receiver_.counter);
 
-  // The nearest solid surface along the central ray.
+  // The nearest solid surface along the central ray; on equal ranges the first found (the lower
+  // cylinder index, cylinders before the ground) stays.
   double nearest = max_range;
   std::optional<Candidate> solid;
   for (std::size_t c = 0; c < scene.cylinders.size(); ++c) {
     const auto hit = intersect(scene.cylinders[c], ray.origin_enu_m, ray.dir_enu, 0.0, nearest);
-    if (!hit) continue;
+    if (!hit || (solid && hit->t == nearest)) continue;
     nearest = hit->t;
     solid = cylinder_candidate(ray, scene.cylinders[c], *hit, cylinder_object_index(scene, c),
                                receiver_);
@@ -29,21 +30,22 @@ void BruteForceTracer::trace(const PulseRay& ray, PulseCandidates& out) const {
     const auto hit =
         intersect_triangle(ray.origin_enu_m, ray.dir_enu, mesh.vertices[triangle[0]],
                            mesh.vertices[triangle[1]], mesh.vertices[triangle[2]], 0.0, nearest);
-    if (!hit) continue;
+    if (!hit || (solid && hit->t == nearest)) continue;
     nearest = hit->t;
     solid = ground_candidate(ray, hit->t, hit->normal, scene.terrain.reflectivity,
                              ground_object_index(scene), receiver_);
   }
   if (solid) out.set_solid(*solid);
 
-  // Every segment of every conductor.
+  // Every segment of every conductor in front of the solid hit: the central ray never reaches
+  // the ones behind it, so a conductor's candidate is its strongest visible segment.
   for (std::size_t w = 0; w < scene.conductors.size(); ++w) {
     const Conductor& conductor = scene.conductors[w];
     for (std::size_t s = 0; s + 1 < conductor.points_enu_m.size(); ++s) {
       Candidate candidate;
       if (wire_segment_candidate(ray, conductor, s, static_cast<std::uint32_t>(w), receiver_,
                                  candidate) &&
-          candidate.range_m <= max_range) {
+          candidate.range_m <= max_range && (!solid || candidate.range_m < solid->range_m)) {
         out.offer_wire(candidate);
       }
     }

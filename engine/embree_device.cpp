@@ -15,7 +15,8 @@ void on_embree_error(void* user, RTCError /*code*/, const char* message) {
 EmbreeDevice::EmbreeDevice(const std::string& config)
     : device_(rtcNewDevice(config.empty() ? nullptr : config.c_str())) {
   if (device_ == nullptr) {
-    throw Error("Embree: cannot create a device (" + std::to_string(rtcGetDeviceError(nullptr)) + ")");
+    throw Error("Embree: cannot create a device (" + std::to_string(rtcGetDeviceError(nullptr)) +
+                ")");
   }
   rtcSetDeviceErrorFunction(device_, on_embree_error, &last_message_);
 }

@@ -18,7 +18,10 @@ constexpr double kCaptureMarginRelative = 1e-3;
 constexpr double kCaptureMarginAbsolute_m = 1e-3;
 
 // Intersection filter of a conductor: the exact §7 wire test in double precision; the hit is
-// recorded as a candidate and always rejected so traversal goes on to what lies behind.
+// recorded as a candidate and always rejected so traversal goes on to what lies behind. The wire
+// pass runs after the solid pass, so a segment whose closest approach lies at or beyond the
+// pulse's solid hit is never offered: the conductor's candidate is its strongest visible segment,
+// whatever order Embree visits the segments in.
 void conductor_filter(const RTCFilterFunctionNArguments* args) {
   const auto* binding = static_cast<const ConductorBinding*>(args->geometryUserPtr);
   const TraceContext* context = trace_context(args->context);
@@ -28,11 +31,13 @@ void conductor_filter(const RTCFilterFunctionNArguments* args) {
     args->valid[i] = 0;
     const unsigned id = RTCRayN_id(args->ray, args->N, i);
     const unsigned segment = RTCHitN_primID(args->hit, args->N, i);
+    PulseCandidates& pulse = context->candidates[id];
     Candidate candidate;
     if (wire_segment_candidate(context->rays[id], *binding->conductor, segment, binding->object,
                                receiver, candidate) &&
-        candidate.range_m <= context->max_range_m) {
-      context->candidates[id].offer_wire(candidate);
+        candidate.range_m <= context->max_range_m &&
+        (!pulse.has_solid() || candidate.range_m < pulse.solid().range_m)) {
+      pulse.offer_wire(candidate);
     }
   }
 }
@@ -61,10 +66,19 @@ void cylinders_intersect(const RTCIntersectFunctionNArguments* args) {
     if (args->valid[i] == 0) continue;
     const unsigned id = RTCRayN_id(rays, args->N, i);
     const PulseRay& ray = context->rays[id];
-    const double t_far = RTCRayN_tfar(rays, args->N, i);
+    CylinderRecord& record = context->cylinder_hits[id - context->chunk_begin];
+    const float t_far = RTCRayN_tfar(rays, args->N, i);
+    // While a cylinder is the nearest hit, compare with its exact range, not the float tfar: a
+    // nearer cylinder within one float step, or a coincident one (consecutive spans share a
+    // support), is then decided in double, and equal ranges go to the lower cylinder index as in
+    // the brute-force tracer, whatever order Embree visits them in.
+    const bool cylinder_nearest =
+        record.prim_id != RTC_INVALID_GEOMETRY_ID && static_cast<float>(record.hit.t) == t_far;
+    const double t_max = cylinder_nearest ? record.hit.t : static_cast<double>(t_far);
     const auto hit =
-        intersect(cylinder, ray.origin_enu_m, ray.dir_enu, RTCRayN_tnear(rays, args->N, i), t_far);
+        intersect(cylinder, ray.origin_enu_m, ray.dir_enu, RTCRayN_tnear(rays, args->N, i), t_max);
     if (!hit) continue;
+    if (cylinder_nearest && hit->t == record.hit.t && record.prim_id < args->primID) continue;
     RTCRayN_tfar(rays, args->N, i) = static_cast<float>(hit->t);
     RTCHitN_Ng_x(hits, args->N, i) = static_cast<float>(hit->normal.x());
     RTCHitN_Ng_y(hits, args->N, i) = static_cast<float>(hit->normal.y());
@@ -74,8 +88,18 @@ void cylinders_intersect(const RTCIntersectFunctionNArguments* args) {
     RTCHitN_primID(hits, args->N, i) = args->primID;
     RTCHitN_geomID(hits, args->N, i) = args->geomID;
     RTCHitN_instID(hits, args->N, i, 0) = args->context->instID[0];
-    context->cylinder_hits[id - context->chunk_begin] = CylinderRecord{args->primID, *hit};
+    record = CylinderRecord{args->primID, *hit};
   }
+}
+
+RTCScene new_scene(const EmbreeDevice& device) {
+  RTCScene scene = rtcNewScene(device.get());
+  rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
+  // Robust mode: watertight triangle tests and conservative box tests, so a ray through a
+  // terrain edge or corner cannot slip between two triangles the double-precision brute force
+  // sees as closed.
+  rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
+  return scene;
 }
 
 }  // namespace
@@ -87,22 +111,27 @@ EmbreeScene::EmbreeScene(const EmbreeDevice& device, const Scene& scene,
   if (!(std::isfinite(max_range_m) && max_range_m > 0.0)) {
     throw Error("engine: the maximum range must be positive and finite");
   }
-  scene_ = rtcNewScene(device.get());
-  rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
-  // Robust mode: watertight triangle tests and conservative box tests, so a ray through a
-  // terrain edge or corner cannot slip between two triangles the double-precision brute force
-  // sees as closed.
-  rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+  for (const Conductor& conductor : scene.conductors) {
+    if (conductor.points_enu_m.size() < 2) {
+      throw Error("engine: conductor " + conductor.id + " has fewer than two points");
+    }
+  }
+  solids_ = new_scene(device);
+  wires_ = new_scene(device);
   bindings_.reserve(scene.conductors.size());
   for (std::size_t i = 0; i < scene.conductors.size(); ++i) attach_conductor(device, i);
   if (!scene.cylinders.empty()) attach_cylinders(device);
   terrain_mesh_ = scene.terrain.mesh(region);
   if (!terrain_mesh_.triangles.empty()) attach_terrain(device);
-  rtcCommitScene(scene_);
+  rtcCommitScene(solids_);
+  rtcCommitScene(wires_);
   device.check("building the scene");
 }
 
-EmbreeScene::~EmbreeScene() { rtcReleaseScene(scene_); }
+EmbreeScene::~EmbreeScene() {
+  rtcReleaseScene(wires_);
+  rtcReleaseScene(solids_);
+}
 
 double EmbreeScene::capture_radius_m(const Conductor& conductor) const {
   const double radius = conductor.radius_m + beam_radius_m(max_range_m_, receiver_.beam);
@@ -111,9 +140,6 @@ double EmbreeScene::capture_radius_m(const Conductor& conductor) const {
 
 void EmbreeScene::attach_conductor(const EmbreeDevice& device, std::size_t index) {
   const Conductor& conductor = scene().conductors[index];
-  if (conductor.points_enu_m.size() < 2) {
-    throw Error("engine: conductor " + conductor.id + " has fewer than two points");
-  }
   RTCGeometry geometry = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_ROUND_LINEAR_CURVE);
   const std::size_t points = conductor.points_enu_m.size();
   auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
@@ -141,7 +167,7 @@ void EmbreeScene::attach_conductor(const EmbreeDevice& device, std::size_t index
   rtcSetGeometryUserData(geometry, &bindings_.back());
   rtcSetGeometryIntersectFilterFunction(geometry, conductor_filter);
   rtcCommitGeometry(geometry);
-  const unsigned geom_id = rtcAttachGeometry(scene_, geometry);
+  const unsigned geom_id = rtcAttachGeometry(wires_, geometry);
   rtcReleaseGeometry(geometry);
   if (geom_id != index) throw Error("engine: unexpected conductor geometry id");
   device.check("adding a conductor");
@@ -154,7 +180,7 @@ void EmbreeScene::attach_cylinders(const EmbreeDevice& device) {
   rtcSetGeometryBoundsFunction(geometry, cylinders_bounds, nullptr);
   rtcSetGeometryIntersectFunction(geometry, cylinders_intersect);
   rtcCommitGeometry(geometry);
-  cylinders_geom_ = rtcAttachGeometry(scene_, geometry);
+  cylinders_geom_ = rtcAttachGeometry(solids_, geometry);
   rtcReleaseGeometry(geometry);
   device.check("adding poles and trees");
 }
@@ -179,7 +205,7 @@ void EmbreeScene::attach_terrain(const EmbreeDevice& device) {
     }
   }
   rtcCommitGeometry(geometry);
-  terrain_geom_ = rtcAttachGeometry(scene_, geometry);
+  terrain_geom_ = rtcAttachGeometry(solids_, geometry);
   rtcReleaseGeometry(geometry);
   device.check("adding the terrain");
 }

@@ -1,12 +1,17 @@
 #pragma once
-// The scene as Embree sees it (DESIGN.md "Engine decisions"), built once per scenario:
-//   conductors — one ROUND_LINEAR_CURVE geometry each, its radius the *capture radius*
-//                r_wire + r_beam(max range) (plus a float-safety margin), so every pulse whose beam
-//                can touch the wire reaches the intersection filter, which applies the exact
-//                double-precision rule of sensor/pulse_candidates.hpp and rejects the hit so
-//                traversal continues;
-//   cylinders  — one USER geometry (poles and trees), intersected in double precision;
-//   terrain    — one triangle mesh over the region the sensor can reach.
+// The scene as Embree sees it (DESIGN.md "Engine decisions"), built once per scenario as two
+// Embree scenes, traced one after the other for each pulse (engine/frame_tracer.hpp):
+//   solids  — what stops the central ray:
+//     cylinders  — one USER geometry (poles and trees), intersected in double precision;
+//     terrain    — one triangle mesh over the region the sensor can reach;
+//   wires   — conductors, one ROUND_LINEAR_CURVE geometry each, its radius the *capture radius*
+//             r_wire + r_beam(max range) (plus a float-safety margin), so every pulse whose beam
+//             can touch the wire reaches the intersection filter, which applies the exact
+//             double-precision rule of sensor/pulse_candidates.hpp to segments in front of the
+//             pulse's solid hit and rejects the hit so traversal continues. Segments are
+//             independent capsules (no neighbour flags), so a ray inside the tube still meets
+//             every segment it passes.
+// Both scenes are built in robust mode (watertight triangles, conservative bounds).
 // Float coordinates are offsets from the scenario origin, converted from double once here.
 // The scene is immutable after construction and may be traced from any number of threads.
 #include <embree3/rtcore.h>
@@ -36,13 +41,15 @@ class EmbreeScene {
   EmbreeScene(const EmbreeScene&) = delete;
   EmbreeScene& operator=(const EmbreeScene&) = delete;
 
-  [[nodiscard]] RTCScene handle() const { return scene_; }
+  [[nodiscard]] RTCScene solids() const { return solids_; }  // cylinders and terrain
+  [[nodiscard]] RTCScene wires() const { return wires_; }    // conductors
   [[nodiscard]] const Scene& scene() const { return *objects_; }
   [[nodiscard]] const ReceiverParams& receiver() const { return receiver_; }
   [[nodiscard]] const TriangleMesh& terrain_mesh() const { return terrain_mesh_; }
   [[nodiscard]] double capture_radius_m(const Conductor& conductor) const;
 
-  // Geometry ids: conductors 0..C−1 (geomID = conductor index), then cylinders, then terrain.
+  // Geometry ids: in wires(), conductor i is geomID i; in solids(), the cylinders, then the
+  // terrain (RTC_INVALID_GEOMETRY_ID when absent).
   [[nodiscard]] unsigned cylinders_geom_id() const { return cylinders_geom_; }
   [[nodiscard]] unsigned terrain_geom_id() const { return terrain_geom_; }
 
@@ -56,7 +63,8 @@ class EmbreeScene {
   double max_range_m_;
   TriangleMesh terrain_mesh_;
   std::vector<ConductorBinding> bindings_;
-  RTCScene scene_ = nullptr;
+  RTCScene solids_ = nullptr;
+  RTCScene wires_ = nullptr;
   unsigned cylinders_geom_ = RTC_INVALID_GEOMETRY_ID;
   unsigned terrain_geom_ = RTC_INVALID_GEOMETRY_ID;
 };

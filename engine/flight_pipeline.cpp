@@ -27,25 +27,26 @@ void run_flight(const FrameSimulator& simulator, const PoseSource& poses, const 
   const std::int64_t end = range.first_frame + range.frame_count;
   tbb::parallel_pipeline(
       static_cast<std::size_t>(frames_in_flight),
-      tbb::make_filter<void, FrameResult*>(
-          tbb::filter_mode::serial_in_order,
-          [&](tbb::flow_control& control) -> FrameResult* {
-            if (next >= end) {
-              control.stop();
-              return nullptr;
-            }
-            FrameResult* buffer = nullptr;
-            // The pipeline holds at most frames_in_flight tokens, so a buffer is always free.
-            if (!free_buffers.try_pop(buffer)) throw Error("engine: frame buffer pool exhausted");
-            buffer->frame = next++;
-            return buffer;
-          }) &
-          tbb::make_filter<FrameResult*, FrameResult*>(
-              tbb::filter_mode::parallel,
-              [&](FrameResult* buffer) {
-                simulator.simulate(buffer->frame, poses, *buffer);
-                return buffer;
-              }) &
+      tbb::make_filter<void, FrameResult*>(tbb::filter_mode::serial_in_order,
+                                           [&](tbb::flow_control& control) -> FrameResult* {
+                                             if (next >= end) {
+                                               control.stop();
+                                               return nullptr;
+                                             }
+                                             FrameResult* buffer = nullptr;
+                                             // The pipeline holds at most frames_in_flight tokens,
+                                             // so a buffer is always free.
+                                             if (!free_buffers.try_pop(buffer))
+                                               throw Error("engine: frame buffer pool exhausted");
+                                             buffer->frame = next++;
+                                             return buffer;
+                                           }) &
+          tbb::make_filter<FrameResult*, FrameResult*>(tbb::filter_mode::parallel,
+                                                       [&](FrameResult* buffer) {
+                                                         simulator.simulate(buffer->frame, poses,
+                                                                            *buffer);
+                                                         return buffer;
+                                                       }) &
           tbb::make_filter<FrameResult*, void>(tbb::filter_mode::serial_in_order,
                                                [&](FrameResult* buffer) {
                                                  sink(*buffer);

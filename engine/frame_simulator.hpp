@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "engine/frame_tracer.hpp"
-#include "sensor/mounting.hpp"
 #include "sensor/frame_view.hpp"
+#include "sensor/mounting.hpp"
 #include "sensor/pose_source.hpp"
 #include "sensor/receiver.hpp"
 #include "sensor/scan_params.hpp"
@@ -20,10 +20,10 @@ namespace owsim {
 struct FrameResult {
   std::int64_t frame = 0;
   FrameSweep sweep;
-  std::vector<Pulse> pulses;                 // the scan pattern, firing order
-  std::vector<PulseRay> rays;                // the central ray of each pulse (local ENU)
-  std::vector<std::uint8_t> active;          // 0 for the reference fiber
-  std::vector<PulseCandidates> candidates;   // what the trace found
+  std::vector<Pulse> pulses;                // the scan pattern, firing order
+  std::vector<PulseRay> rays;               // the central ray of each pulse (local ENU)
+  std::vector<std::uint8_t> active;         // 0 for the reference fiber
+  std::vector<PulseCandidates> candidates;  // what the trace found
   // What the receiver recorded. For the reference fiber (inactive) count is 0 and counter1 holds
   // the reference range counter of SENSOR-SPEC §8.
   std::vector<PulseReturns> returns;

@@ -63,6 +63,52 @@ void record_solid(const EmbreeScene& scene, const PulseRay& ray, unsigned geom_i
   }
 }
 
+// One Embree query over the block's rays, in the chosen form.
+void intersect_block(TraceApi api, RTCScene scene, TraceContext& context, RTCRayHit* rayhits,
+                     unsigned n) {
+  switch (api) {
+    case TraceApi::per_ray:
+      for (unsigned i = 0; i < n; ++i) rtcIntersect1(scene, &context.rtc, &rayhits[i]);
+      break;
+    case TraceApi::stream:
+      context.rtc.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+      rtcIntersect1M(scene, &context.rtc, rayhits, n, sizeof(RTCRayHit));
+      break;
+    case TraceApi::packet8:
+      context.rtc.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+      for (unsigned first = 0; first < n; first += 8) {
+        alignas(32) RTCRayHit8 packet;
+        alignas(32) int valid[8];
+        for (unsigned lane = 0; lane < 8; ++lane) {
+          const unsigned i = first + lane;
+          valid[lane] = i < n ? -1 : 0;
+          const RTCRayHit& source = rayhits[i < n ? i : first];
+          packet.ray.org_x[lane] = source.ray.org_x;
+          packet.ray.org_y[lane] = source.ray.org_y;
+          packet.ray.org_z[lane] = source.ray.org_z;
+          packet.ray.dir_x[lane] = source.ray.dir_x;
+          packet.ray.dir_y[lane] = source.ray.dir_y;
+          packet.ray.dir_z[lane] = source.ray.dir_z;
+          packet.ray.tnear[lane] = source.ray.tnear;
+          packet.ray.tfar[lane] = source.ray.tfar;
+          packet.ray.time[lane] = 0.0f;
+          packet.ray.mask[lane] = 0xFFFFFFFFu;
+          packet.ray.id[lane] = source.ray.id;
+          packet.ray.flags[lane] = 0;
+          packet.hit.geomID[lane] = kNoHit;
+          packet.hit.instID[0][lane] = kNoHit;
+        }
+        rtcIntersect8(valid, scene, &context.rtc, &packet);
+        for (unsigned lane = 0; lane < 8 && first + lane < n; ++lane) {
+          RTCRayHit& target = rayhits[first + lane];
+          target.hit.geomID = packet.hit.geomID[lane];
+          target.hit.primID = packet.hit.primID[lane];
+        }
+      }
+      break;
+  }
+}
+
 }  // namespace
 
 std::string_view to_string(TraceApi api) {
@@ -123,54 +169,30 @@ void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const st
       ++n;
     }
 
-    switch (api_) {
-      case TraceApi::per_ray:
-        for (unsigned i = 0; i < n; ++i) rtcIntersect1(scene_->handle(), &context.rtc, &rayhits[i]);
-        break;
-      case TraceApi::stream:
-        context.rtc.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-        rtcIntersect1M(scene_->handle(), &context.rtc, rayhits.data(), n, sizeof(RTCRayHit));
-        break;
-      case TraceApi::packet8:
-        context.rtc.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-        for (unsigned first = 0; first < n; first += 8) {
-          alignas(32) RTCRayHit8 packet;
-          alignas(32) int valid[8];
-          for (unsigned lane = 0; lane < 8; ++lane) {
-            const unsigned i = first + lane;
-            valid[lane] = i < n ? -1 : 0;
-            const RTCRayHit& source = rayhits[i < n ? i : first];
-            packet.ray.org_x[lane] = source.ray.org_x;
-            packet.ray.org_y[lane] = source.ray.org_y;
-            packet.ray.org_z[lane] = source.ray.org_z;
-            packet.ray.dir_x[lane] = source.ray.dir_x;
-            packet.ray.dir_y[lane] = source.ray.dir_y;
-            packet.ray.dir_z[lane] = source.ray.dir_z;
-            packet.ray.tnear[lane] = source.ray.tnear;
-            packet.ray.tfar[lane] = source.ray.tfar;
-            packet.ray.time[lane] = 0.0f;
-            packet.ray.mask[lane] = 0xFFFFFFFFu;
-            packet.ray.id[lane] = source.ray.id;
-            packet.ray.flags[lane] = 0;
-            packet.hit.geomID[lane] = kNoHit;
-            packet.hit.instID[0][lane] = kNoHit;
-          }
-          rtcIntersect8(valid, scene_->handle(), &context.rtc, &packet);
-          for (unsigned lane = 0; lane < 8 && first + lane < n; ++lane) {
-            RTCRayHit& target = rayhits[first + lane];
-            target.hit.geomID = packet.hit.geomID[lane];
-            target.hit.primID = packet.hit.primID[lane];
-          }
-        }
-        break;
-    }
-
+    // Pass 1: the nearest solid (pole, tree, ground) along each central ray.
+    intersect_block(api_, scene_->solids(), context, rayhits.data(), n);
     for (unsigned i = 0; i < n; ++i) {
       const RTCRayHit& rayhit = rayhits[i];
       const unsigned id = rayhit.ray.id;
       record_solid(*scene_, rays[id], rayhit.hit.geomID, rayhit.hit.primID,
                    cylinder_hits[id - block], candidates[id]);
     }
+
+    // Pass 2: the wires in front of it. The filter offers only segments nearer than the solid
+    // hit; tfar is the solid's range rounded up to the next float. A segment whose closest
+    // approach lies before the solid has its capsule entered at least millimetres earlier (the
+    // capture margin), far more than the float rounding of the ray.
+    for (unsigned i = 0; i < n; ++i) {
+      const unsigned id = rayhits[i].ray.id;
+      const PulseCandidates& pulse = candidates[id];
+      const float wire_tfar =
+          pulse.has_solid() ? std::nextafter(static_cast<float>(pulse.solid().range_m), INFINITY)
+                            : tfar;
+      set_ray(rayhits[i].ray, rays[id], id, wire_tfar);
+      rayhits[i].hit.geomID = kNoHit;
+      rayhits[i].hit.instID[0] = kNoHit;
+    }
+    intersect_block(api_, scene_->wires(), context, rayhits.data(), n);
   }
 }
 

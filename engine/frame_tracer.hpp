@@ -1,8 +1,11 @@
 #pragma once
 // Traces a frame's pulses through the Embree scene (DESIGN.md "Batching"): the rays are split into
 // chunks handed to tbb::parallel_for, and each chunk goes through one of Embree's three query
-// forms, so benchmarks can compare them. Every pulse's result depends only on its own ray, so the
-// output is bit-identical whatever the thread count or the API.
+// forms, so benchmarks can compare them. Each chunk is traced twice: first against the solids
+// (the central ray's nearest pole, tree or ground hit), then against the wires up to that hit, so
+// each conductor's candidate is its strongest segment in front of the solid (SENSOR-SPEC §7
+// pinned occlusion) however Embree orders its visits. Every pulse's result depends only on its own
+// ray, so the output is bit-identical whatever the thread count or the API.
 #include <cstdint>
 #include <span>
 #include <string_view>

@@ -22,9 +22,9 @@ struct CylinderRecord {
 struct TraceContext {
   RTCIntersectContext rtc;  // first member: Embree sees only this part
   const EmbreeScene* scene = nullptr;
-  std::span<const PulseRay> rays;              // by ray id
-  std::span<PulseCandidates> candidates;       // by ray id
-  std::span<CylinderRecord> cylinder_hits;     // by ray id − chunk_begin
+  std::span<const PulseRay> rays;           // by ray id
+  std::span<PulseCandidates> candidates;    // by ray id
+  std::span<CylinderRecord> cylinder_hits;  // by ray id − chunk_begin
   unsigned chunk_begin = 0;
   double max_range_m = 0.0;  // the counter timeout range: nothing beyond it is a candidate
 };

@@ -16,11 +16,8 @@ struct TriangleHit {
 };
 
 // Nearest hit with t ∈ [t_min, t_max], or nullopt.
-[[nodiscard]] std::optional<TriangleHit> intersect_triangle(const Eigen::Vector3d& origin,
-                                                            const Eigen::Vector3d& dir,
-                                                            const Eigen::Vector3d& v0,
-                                                            const Eigen::Vector3d& v1,
-                                                            const Eigen::Vector3d& v2, double t_min,
-                                                            double t_max);
+[[nodiscard]] std::optional<TriangleHit> intersect_triangle(
+    const Eigen::Vector3d& origin, const Eigen::Vector3d& dir, const Eigen::Vector3d& v0,
+    const Eigen::Vector3d& v1, const Eigen::Vector3d& v2, double t_min, double t_max);
 
 }  // namespace owsim

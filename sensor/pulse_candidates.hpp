@@ -4,7 +4,8 @@
 // apply the very same double-precision rules:
 //   wire   — a candidate when the ray passes within r_wire + r_beam(R) of the segment's axis,
 //            R the range to the closest approach; one candidate per conductor, its
-//            highest-energy segment.
+//            highest-energy segment among those in front of the solid hit (the tracers offer
+//            only those).
 //   pole / tree — the central ray's hit on the cylinder; footprint from the ray–axis distance.
 //   ground — the central ray's hit; footprint 1.
 // The central ray stops at the nearest solid surface (pole, tree, ground) whether or not that

@@ -1,0 +1,204 @@
+// Protects one frame of the simulator (engine/frame_simulator.hpp): the reference fiber carries
+// the reference counter and no ray, every ray is a unit vector from the sensor, ground returns
+// lie on the ground to the millimetre, and a frame's bytes do not depend on the thread count, the
+// Embree query form, the buffers reused or the order frames are simulated in (DESIGN.md
+// "Determinism").
+#include <gtest/gtest.h>
+#include <tbb/task_arena.h>
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "engine/embree_device.hpp"
+#include "engine/embree_scene.hpp"
+#include "engine/frame_simulator.hpp"
+#include "scene_fixtures.hpp"
+#include "sensor/range_counter.hpp"
+
+namespace owsim {
+namespace {
+
+constexpr TraceApi kApis[3] = {TraceApi::per_ray, TraceApi::stream, TraceApi::packet8};
+
+const Eigen::AlignedBox2d kRegion(Eigen::Vector2d(-2000.0, -2000.0),
+                                  Eigen::Vector2d(2000.0, 2000.0));
+
+Scene flat_ground(double height_m) {
+  Scene scene;
+  scene.terrain.kind = TerrainKind::flat;
+  scene.terrain.flat_u_m = height_m;
+  return scene;
+}
+
+// 100 m above flat ground, nose 30° down, so the whole ±21° fan meets the ground.
+Pose looking_down(double ground_m) {
+  Pose pose;
+  pose.position_enu_m = Eigen::Vector3d(123.0, -456.0, ground_m + 100.0);
+  pose.attitude.heading_deg = 37.0;
+  pose.attitude.pitch_deg = -30.0;
+  pose.attitude.roll_deg = 5.0;
+  return pose;
+}
+
+TEST(FrameSimulator, ReferenceFiberCarriesTheReferenceCounterAndNoRay) {
+  const Scene scene = flat_ground(0.0);
+  FrameSimulatorParams params;
+  params.receiver.range_noise_sigma_m = 0.0;
+  const EmbreeDevice device;
+  const EmbreeScene embree(device, scene, params.receiver, kRegion,
+                           timeout_range_m(params.receiver.counter));
+  const FrameSimulator simulator(params, embree, TraceApi::stream);
+  FrameResult out;
+  simulator.simulate(4, FixedPose(looking_down(0.0)), out);
+  ASSERT_EQ(out.returns.size(), 20352u);
+  EXPECT_EQ(out.frame, 4);
+  int references = 0;
+  for (std::size_t k = 0; k < out.pulses.size(); ++k) {
+    if (!out.pulses[k].reference) {
+      EXPECT_EQ(out.active[k], 1) << k;
+      continue;
+    }
+    ++references;
+    EXPECT_EQ(out.active[k], 0) << k;
+    EXPECT_EQ(out.pulses[k].fiber, 128);
+    EXPECT_TRUE(out.candidates[k].wires().empty());
+    EXPECT_FALSE(out.candidates[k].has_solid());
+    EXPECT_EQ(out.returns[k].count, 0);
+    EXPECT_EQ(out.returns[k].counter1, 10);  // SENSOR-SPEC §8 reference range, noise off
+    EXPECT_EQ(out.returns[k].counter2, 2066);
+  }
+  EXPECT_EQ(references, 159);  // one a line
+}
+
+TEST(FrameSimulator, RaysAreUnitVectorsFromTheSensor) {
+  const Scene scene = flat_ground(0.0);
+  FrameSimulatorParams params;
+  params.mount.lever_arm_m = Eigen::Vector3d(2.0, 0.5, 1.0);
+  const EmbreeDevice device;
+  const EmbreeScene embree(device, scene, params.receiver, kRegion,
+                           timeout_range_m(params.receiver.counter));
+  const FrameSimulator simulator(params, embree, TraceApi::per_ray);
+  FrameResult out;
+  const test::LevelFlight flight(Eigen::Vector3d(0.0, 0.0, 150.0), 75.0, 60.0);
+  simulator.build_rays(1, flight, out);
+  const SensorModel model = params.scan.model;
+  for (std::size_t k = 0; k < out.rays.size(); ++k) {
+    if (out.active[k] == 0) continue;
+    EXPECT_NEAR(out.rays[k].dir_enu.norm(), 1.0, 1e-12) << k;
+    // The origin is the sensor at the pulse's own firing time.
+    const SensorPlacement placement =
+        sensor_placement(flight.pose_at(out.pulses[k].time_s), params.mount, model);
+    EXPECT_NEAR((out.rays[k].origin_enu_m - placement.origin_enu_m).norm(), 0.0, 1e-9) << k;
+  }
+  // The sensor moves 60 m/s · 0.333 s ≈ 20 m over the frame.
+  const double moved =
+      (out.rays[out.rays.size() - 2].origin_enu_m - out.rays[0].origin_enu_m).norm();
+  EXPECT_NEAR(moved, 60.0 * 20350.0 / params.scan.prf_hz, 1e-6);
+}
+
+TEST(FrameSimulator, GroundReturnsLieOnTheGround) {
+  const double ground = 37.25;
+  const Scene scene = flat_ground(ground);
+  FrameSimulatorParams params;
+  params.receiver.range_noise_sigma_m = 0.0;
+  const EmbreeDevice device;
+  const EmbreeScene embree(device, scene, params.receiver, kRegion,
+                           timeout_range_m(params.receiver.counter));
+  const FrameSimulator simulator(params, embree, TraceApi::packet8);
+  FrameResult out;
+  simulator.simulate(0, FixedPose(looking_down(ground)), out);
+  const double delta = range_per_count_m(params.receiver.counter);
+  int returns = 0;
+  for (std::size_t k = 0; k < out.returns.size(); ++k) {
+    const PulseReturns& pulse = out.returns[k];
+    if (out.active[k] == 0) continue;
+    ASSERT_LE(pulse.count, 1) << k;  // one surface, one return
+    if (pulse.count == 0) continue;
+    ++returns;
+    const Return& r = pulse.returns[0];
+    EXPECT_EQ(r.surface, static_cast<std::uint8_t>(SurfaceClass::ground));
+    EXPECT_EQ(r.range_m, r.true_range_m);  // noise off
+    const Eigen::Vector3d point = out.rays[k].origin_enu_m + r.range_m * out.rays[k].dir_enu;
+    EXPECT_NEAR(point.z(), ground, 1e-3) << k;
+    EXPECT_EQ(pulse.counter1, static_cast<std::uint16_t>(std::lround(r.range_m / delta))) << k;
+    EXPECT_EQ(pulse.counter2, 2066);
+  }
+  // Nearly every pulse sees the ground (the shallowest rays, 9° down, are the faintest).
+  EXPECT_GT(returns, 19000);
+}
+
+// Every byte that matters of a frame's returns, for bit-for-bit comparison.
+std::vector<std::uint64_t> fingerprint(const FrameResult& out) {
+  std::vector<std::uint64_t> words;
+  for (const PulseReturns& pulse : out.returns) {
+    words.push_back(static_cast<std::uint64_t>(pulse.count));
+    words.push_back(pulse.counter1);
+    words.push_back(pulse.counter2);
+    for (int r = 0; r < pulse.count; ++r) {
+      const Return& x = pulse.returns[r];
+      words.push_back(std::bit_cast<std::uint64_t>(x.range_m));
+      words.push_back(std::bit_cast<std::uint64_t>(x.true_range_m));
+      words.push_back(std::bit_cast<std::uint64_t>(x.energy_rel));
+      words.push_back(std::bit_cast<std::uint64_t>(x.incidence_deg));
+      words.push_back(x.counter);
+      words.push_back(x.object_index);
+      words.push_back(x.surface);
+    }
+  }
+  return words;
+}
+
+TEST(FrameSimulator, FramesAreBitIdenticalAcrossThreadsApisAndOrder) {
+  const test::RandomScene made =
+      test::random_scene(77, {.spans = 4, .trees = 10, .sloped_grid = true, .max_range_m = 500.0});
+  FrameSimulatorParams params;  // default noise: the keyed draws must not depend on threads
+  params.seed = 1234;
+  const EmbreeDevice device;
+  const EmbreeScene embree(device, made.scene, params.receiver, made.region,
+                           timeout_range_m(params.receiver.counter));
+  // Fly towards the first span's middle.
+  const Conductor& wire = made.scene.conductors.front();
+  const Eigen::Vector3d middle = wire.points_enu_m[wire.points_enu_m.size() / 2];
+  const Eigen::Vector3d sight = middle - made.sensor_enu_m;
+  const double heading = std::atan2(sight.x(), sight.y()) * 180.0 / std::numbers::pi;
+  const test::LevelFlight flight(made.sensor_enu_m, heading, 30.0);
+
+  std::vector<std::uint64_t> expected;
+  int wire_returns = 0;
+  for (TraceApi api : kApis) {
+    const FrameSimulator simulator(params, embree, api);
+    for (int threads : {1, 2}) {
+      tbb::task_arena arena(threads);
+      FrameResult out;
+      arena.execute([&] {
+        simulator.simulate(3, flight, out);  // frame 3 first, then frame 2 into the same buffers
+        simulator.simulate(2, flight, out);
+      });
+      const std::vector<std::uint64_t> words = fingerprint(out);
+      if (expected.empty()) {
+        expected = words;
+        for (const PulseReturns& pulse : out.returns) {
+          for (int r = 0; r < pulse.count; ++r) {
+            wire_returns +=
+                pulse.returns[r].surface == static_cast<std::uint8_t>(SurfaceClass::wire) ? 1 : 0;
+          }
+        }
+        continue;
+      }
+      EXPECT_TRUE(words == expected) << to_string(api) << " with " << threads << " threads";
+    }
+  }
+  // Frame 2 alone in a fresh buffer gives the same bytes too.
+  FrameResult alone;
+  FrameSimulator(params, embree, TraceApi::stream).simulate(2, flight, alone);
+  EXPECT_TRUE(fingerprint(alone) == expected);
+  EXPECT_GT(expected.size(), 100000u);
+  EXPECT_GT(wire_returns, 0);  // the comparison covers wire returns, not only ground
+}
+
+}  // namespace
+}  // namespace owsim
