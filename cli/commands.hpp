@@ -12,6 +12,7 @@ struct CommandResult {
 void add_pattern_command(CLI::App& app, CommandResult& result);
 void add_info_command(CLI::App& app, CommandResult& result);
 void add_run_command(CLI::App& app, CommandResult& result);
+void add_bench_command(CLI::App& app, CommandResult& result);
 void add_decode_command(CLI::App& app, CommandResult& result);
 void add_merge_command(CLI::App& app, CommandResult& result);
 

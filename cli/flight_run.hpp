@@ -4,11 +4,20 @@
 // the end-to-end tests call the same function.
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <set>
 
+#include "engine/embree_device.hpp"
+#include "engine/embree_scene.hpp"
+#include "engine/flight_pipeline.hpp"
+#include "engine/frame_simulator.hpp"
 #include "engine/frame_tracer.hpp"
+#include "geometry/geodetic_frame.hpp"
+#include "geometry/scene.hpp"
 #include "io/flight_outputs.hpp"
+#include "io/scenario.hpp"
+#include "sensor/trajectory.hpp"
 
 namespace owsim::cli {
 
@@ -17,7 +26,7 @@ struct RunOptions {
   std::optional<std::filesystem::path> out;  // default out/<scenario name>/
   std::optional<std::int64_t> frames;
   std::optional<double> duration_s;
-  int threads = 0;                          // 0 = every core
+  int threads = 0;  // 0 = every core
   std::optional<std::uint64_t> seed;
   std::set<OutputKind> outputs = all_outputs();
   bool no_noise = false;
@@ -34,6 +43,39 @@ struct RunReport {
   double realtime_factor = 0.0;
   int threads = 0;
 };
+
+// Everything a run builds before its first frame: the scenario (with the options' seed and noise
+// overrides), its local frame, scene and trajectory, the frame count, and the Embree scene and
+// frame simulator. Built once (may throw); `owsim run` and `owsim bench` start from the same one.
+// Not copyable or movable: the Embree scene and the simulator point into it.
+struct FlightSetup {
+  explicit FlightSetup(const RunOptions& options);
+  FlightSetup(const FlightSetup&) = delete;
+  FlightSetup& operator=(const FlightSetup&) = delete;
+
+  Scenario scenario;
+  LocalFrame local_frame;
+  Scene scene;
+  Trajectory trajectory;
+  std::int64_t frames;        // frames 0..frames−1 (--frames, --duration or the scenario)
+  Eigen::AlignedBox2d flown;  // east/north extent of the trajectory over those frames
+  EmbreeDevice device;
+  EmbreeScene embree_scene;  // terrain over `flown` widened by the counter's timeout range
+  FrameSimulator simulator;  // with options.trace_api
+};
+
+// The output options of a run: --out (default out/<scenario name>/), --outputs, and a quick-look
+// map over what was flown and built.
+[[nodiscard]] FlightOutputOptions flight_output_options(const FlightSetup& setup,
+                                                        const RunOptions& options);
+
+// The frame pipeline of a run: frames `range` simulated by `simulator` (in parallel on the calling
+// thread's TBB arena, 2 frames in flight per thread, at least 2) and fed to `outputs` in frame
+// order with the aircraft's pose at each frame's first pulse. `frame_done` (may be empty) is told
+// how many frames are done after each one.
+void simulate_frames(const FrameSimulator& simulator, const FlightSetup& setup,
+                     const FlightRange& range, int threads, FlightOutputs& outputs,
+                     const std::function<void(std::int64_t)>& frame_done = {});
 
 RunReport run_flight_scenario(const RunOptions& options);
 

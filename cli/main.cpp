@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   owsim::cli::add_pattern_command(app, result);
   owsim::cli::add_run_command(app, result);
   owsim::cli::add_info_command(app, result);
+  owsim::cli::add_bench_command(app, result);
   owsim::cli::add_decode_command(app, result);
   owsim::cli::add_merge_command(app, result);
   try {

@@ -70,6 +70,9 @@ std::vector<NavRecord> read_sbet(const std::string& path) {
     record.attitude = {kDegPerRad * value[Field::roll], kDegPerRad * value[Field::pitch],
                        wrap_360_deg(kDegPerRad * (value[Field::heading] - value[Field::wander]))};
     validate_geodetic(record.position, where);
+    if (i > 0 && !(record.time_s > records[i - 1].time_s)) {
+      throw input_error(where, "time is not after the previous record's");
+    }
   }
   return records;
 }

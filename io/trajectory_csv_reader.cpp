@@ -88,6 +88,10 @@ std::vector<NavRecord> read_trajectory_csv(const std::string& path) {
     record.position = {value[1], value[2], value[3]};
     record.attitude = {value[4], value[5], value[6]};
     validate_geodetic(record.position, where);
+    if (!records.empty() && !(record.time_s > records.back().time_s)) {
+      throw input_error(where, "time_s '" + std::string(trim(cells[position[0]])) +
+                                   "' is not after the previous record's");
+    }
     records.push_back(record);
   }
   if (!have_header) throw input_error(path, "is empty: no header line");

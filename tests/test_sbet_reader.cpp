@@ -106,13 +106,25 @@ TEST_F(SbetFile, NonFiniteValueNamesRecordAndByte) {
   SbetRecord bad = record(2.0, 48.0, 10.0, 500.0, 0, 0, 0, 0);
   bad[8] = std::numeric_limits<double>::quiet_NaN();
   const SbetRecord good = record(1.0, 48.0, 10.0, 500.0, 0, 0, 0, 0);
-  EXPECT_EQ(error_text({good, good, bad}),
+  const SbetRecord later = record(1.5, 48.0, 10.0, 500.0, 0, 0, 0, 0);
+  EXPECT_EQ(error_text({good, later, bad}),
             path_ + ": record 2 at byte 272: pitch is not a finite number");
   SbetRecord far = good;
   far[1] = 2.0;  // 114.6° latitude
   EXPECT_NE(error_text({far}).find(path_ + ": record 0 at byte 0: latitude 114.59"),
             std::string::npos)
       << error_text({far});
+}
+
+// Regression (issue 7): a time going back reached the spline as "trajectory record 2: …",
+// naming neither the file nor the record's byte.
+TEST_F(SbetFile, TimeNotIncreasingNamesRecordAndByte) {
+  const SbetRecord first = record(1.0, 48.0, 10.0, 500.0, 0, 0, 0, 0);
+  const SbetRecord second = record(2.0, 48.0, 10.0, 500.0, 0, 0, 0, 0);
+  EXPECT_EQ(error_text({first, second, first}),
+            path_ + ": record 2 at byte 272: time is not after the previous record's");
+  EXPECT_EQ(error_text({first, first}),
+            path_ + ": record 1 at byte 136: time is not after the previous record's");
 }
 
 TEST(SbetReader, MissingFileIsAnError) {

@@ -113,6 +113,17 @@ TEST_F(CsvFile, MalformedInputNamesFileLineAndColumn) {
   EXPECT_NE(error_text(header + "0,48.6,10.8,500,0,0,90\n").find("no error"), std::string::npos);
 }
 
+// Regression (issue 7): a time going back reached the spline as "trajectory record 2: …",
+// naming neither the file nor the line.
+TEST_F(CsvFile, TimeNotIncreasingNamesTheLine) {
+  const std::string header = "time_s,lat_deg,lon_deg,h_m,roll_deg,pitch_deg,heading_deg\n";
+  const std::string row = ",48.6,10.8,500,0,0,90\n";
+  EXPECT_EQ(error_text(header + "0" + row + "0.2" + row + "0.1" + row),
+            path_ + ":4: time_s '0.1' is not after the previous record's");
+  EXPECT_EQ(error_text(header + "0" + row + "\n0" + row),
+            path_ + ":4: time_s '0' is not after the previous record's");
+}
+
 TEST(CsvReader, MissingFileIsAnError) {
   EXPECT_THROW((void)read_trajectory_csv("/nonexistent/owsim/trajectory.csv"), Error);
 }

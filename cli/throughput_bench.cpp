@@ -1,0 +1,244 @@
+#include "cli/throughput_bench.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+#include <vector>
+
+#include "cli/flight_run.hpp"
+#include "cli/peak_memory.hpp"
+#include "engine/brute_force_tracer.hpp"
+#include "geometry/error.hpp"
+
+namespace owsim::cli {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+constexpr std::array<TraceApi, 3> kTraceApis = {TraceApi::per_ray, TraceApi::stream,
+                                                TraceApi::packet8};
+
+template <typename Work>
+double seconds_of(Work&& work) {
+  const auto start = Clock::now();
+  work();
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// A fresh folder under the system's temporary directory, removed with its contents at the end.
+class ScratchFolder {
+ public:
+  ScratchFolder() {
+    std::string pattern = (std::filesystem::temp_directory_path() / "owsim_bench_XXXXXX").string();
+    if (::mkdtemp(pattern.data()) == nullptr) {
+      throw Error(pattern + ": cannot create a temporary folder for the word file");
+    }
+    path_ = pattern;
+  }
+  ~ScratchFolder() {
+    std::error_code ignored;
+    std::filesystem::remove_all(path_, ignored);
+  }
+  ScratchFolder(const ScratchFolder&) = delete;
+  ScratchFolder& operator=(const ScratchFolder&) = delete;
+
+  [[nodiscard]] const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+// One frame's rays as the tracer takes them, built once before any timing.
+struct FrameRays {
+  std::vector<PulseRay> rays;
+  std::vector<std::uint8_t> active;
+};
+
+std::vector<FrameRays> build_frame_rays(const FlightSetup& setup, std::int64_t frames) {
+  std::vector<FrameRays> out(static_cast<std::size_t>(frames));
+  FrameResult scratch;
+  for (std::int64_t f = 0; f < frames; ++f) {
+    setup.simulator.build_rays(f, setup.trajectory, scratch);
+    out[static_cast<std::size_t>(f)] = FrameRays{scratch.rays, scratch.active};
+  }
+  return out;
+}
+
+// Every frame's rays through `tracer`, one frame after the other (each frame in parallel chunks).
+double trace_seconds(const FrameTracer& tracer, const std::vector<FrameRays>& frames,
+                     std::vector<PulseCandidates>& candidates) {
+  return seconds_of([&] {
+    for (const FrameRays& frame : frames) tracer.trace(frame.rays, frame.active, candidates);
+  });
+}
+
+// About `wanted` active pulses spread evenly over all frames (every stride-th active pulse).
+std::vector<const PulseRay*> brute_force_subset(const std::vector<FrameRays>& frames,
+                                                std::int64_t wanted, std::uint64_t& active_total) {
+  active_total = 0;
+  for (const FrameRays& frame : frames) {
+    active_total +=
+        static_cast<std::uint64_t>(std::count(frame.active.begin(), frame.active.end(), 1));
+  }
+  const std::uint64_t stride = std::max<std::uint64_t>(
+      1, active_total / static_cast<std::uint64_t>(std::max<std::int64_t>(1, wanted)));
+  std::vector<const PulseRay*> subset;
+  std::uint64_t index = 0;
+  for (const FrameRays& frame : frames) {
+    for (std::size_t k = 0; k < frame.rays.size(); ++k) {
+      if (frame.active[k] == 0) continue;
+      if (index++ % stride == 0) subset.push_back(&frame.rays[k]);
+    }
+  }
+  return subset;
+}
+
+// The subset through the brute-force tracer, in parallel on the current arena.
+double brute_force_seconds(const BruteForceTracer& tracer,
+                           const std::vector<const PulseRay*>& subset) {
+  return seconds_of([&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, subset.size(), 16),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                        PulseCandidates candidates;
+                        for (std::size_t i = range.begin(); i < range.end(); ++i) {
+                          tracer.trace(*subset[i], candidates);
+                        }
+                      });
+  });
+}
+
+// What `owsim run --outputs d64` does over the frames, into a scratch folder. Timed like
+// `owsim run`'s wall_s: the frame pipeline with every word written to the file's buffer, not the
+// final commit (flush, fsync, rename) that follows it.
+double end_to_end_seconds(const FrameSimulator& simulator, const FlightSetup& setup,
+                          const RunOptions& run, int threads) {
+  const ScratchFolder folder;
+  RunOptions into_folder = run;
+  into_folder.out = folder.path();
+  FlightOutputs outputs(flight_output_options(setup, into_folder), setup.scene, setup.scenario.scan,
+                        setup.local_frame);
+  const double seconds = seconds_of([&] {
+    simulate_frames(simulator, setup, FlightRange{0, setup.frames}, threads, outputs);
+  });
+  outputs.finish({});
+  return seconds;
+}
+
+class RoundProgress {
+ public:
+  explicit RoundProgress(bool enabled) : enabled_(enabled && ::isatty(STDERR_FILENO) != 0) {}
+  void note(const char* what, int round, int rounds, double pulses_per_s) const {
+    if (!enabled_) return;
+    std::fprintf(stderr, "\r%-28s round %d/%d  %.3f Mpulses/s      ", what, round, rounds,
+                 pulses_per_s / 1e6);
+  }
+  void done() const {
+    if (enabled_) std::fprintf(stderr, "\r%70s\r", "");
+  }
+
+ private:
+  bool enabled_;
+};
+
+}  // namespace
+
+ThroughputReport measure_throughput(const ThroughputOptions& options) {
+  if (options.frames < 1) throw input_error("--frames", "must be at least 1");
+  if (options.repeats < 1) throw input_error("--repeats", "must be at least 1");
+  if (options.brute_force_pulses < 1)
+    throw input_error("--brute-force-pulses", "must be at least 1");
+  const int threads = options.threads > 0 ? options.threads : tbb::info::default_concurrency();
+  tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism,
+                                  static_cast<std::size_t>(threads));
+
+  RunOptions run;
+  run.scenario = options.scenario;
+  run.frames = options.frames;
+  run.threads = threads;
+  run.outputs = {OutputKind::d64};
+  const FlightSetup setup(run);
+  const ScanParams& scan = setup.scenario.scan;
+  const std::uint64_t pulses = static_cast<std::uint64_t>(setup.frames) *
+                               static_cast<std::uint64_t>(scan.pulses_per_frame());
+  const auto rate = [&](double seconds) {
+    return seconds > 0 ? static_cast<double>(pulses) / seconds : 0.0;
+  };
+  const RoundProgress progress(options.progress);
+
+  const std::vector<FrameRays> frames = build_frame_rays(setup, setup.frames);
+  std::vector<PulseCandidates> candidates(static_cast<std::size_t>(scan.pulses_per_frame()));
+
+  // Trace-only, each query form, interleaved over the rounds; the fastest form wins.
+  constexpr double kNever = std::numeric_limits<double>::infinity();
+  std::array<double, kTraceApis.size()> trace_best;
+  trace_best.fill(kNever);
+  for (int round = 1; round <= options.repeats; ++round) {
+    for (std::size_t a = 0; a < kTraceApis.size(); ++a) {
+      const FrameTracer tracer(setup.embree_scene, kTraceApis[a]);
+      trace_best[a] = std::min(trace_best[a], trace_seconds(tracer, frames, candidates));
+      progress.note(to_string(kTraceApis[a]).data(), round, options.repeats, rate(trace_best[a]));
+    }
+  }
+  const auto winner = static_cast<std::size_t>(
+      std::min_element(trace_best.begin(), trace_best.end()) - trace_best.begin());
+  const TraceApi api = kTraceApis[winner];
+  const FrameTracer tracer(setup.embree_scene, api);
+  const FrameSimulator simulator(setup.simulator.params(), setup.embree_scene, api);
+
+  // End-to-end on every thread and on one, interleaved with trace-only of the winning form.
+  double end_to_end_best = kNever;
+  double single_thread_best = kNever;
+  tbb::task_arena one_thread(1);
+  for (int round = 1; round <= options.repeats; ++round) {
+    trace_best[winner] = std::min(trace_best[winner], trace_seconds(tracer, frames, candidates));
+    end_to_end_best = std::min(end_to_end_best, end_to_end_seconds(simulator, setup, run, threads));
+    progress.note("end-to-end", round, options.repeats, rate(end_to_end_best));
+    single_thread_best =
+        std::min(single_thread_best,
+                 one_thread.execute([&] { return end_to_end_seconds(simulator, setup, run, 1); }));
+    progress.note("single thread", round, options.repeats, rate(single_thread_best));
+  }
+
+  // Brute force on a subset, scaled to every active pulse of the frames.
+  std::uint64_t active_total = 0;
+  const std::vector<const PulseRay*> subset =
+      brute_force_subset(frames, options.brute_force_pulses, active_total);
+  const BruteForceTracer brute_force(setup.scene, setup.embree_scene.terrain_mesh(),
+                                     setup.scenario.receiver);
+  const double subset_seconds = brute_force_seconds(brute_force, subset);
+  const double brute_force_all_s =
+      subset_seconds * static_cast<double>(active_total) / static_cast<double>(subset.size());
+  progress.done();
+
+  ThroughputReport report;
+  report.scenario = setup.scenario.name;
+  report.frames = setup.frames;
+  report.pulses = pulses;
+  report.threads = threads;
+  report.end_to_end_pulses_per_s = rate(end_to_end_best);
+  report.trace_only_pulses_per_s = rate(trace_best[winner]);
+  report.brute_force_pulses_per_s = rate(brute_force_all_s);
+  report.single_thread_pulses_per_s = rate(single_thread_best);
+  report.realtime_factor = report.end_to_end_pulses_per_s / scan.prf_hz;
+  report.trace_api = api;
+  report.peak_rss_mb = peak_rss_mb();
+  report.brute_force_pulses = subset.size();
+  for (std::size_t a = 0; a < kTraceApis.size(); ++a) {
+    report.trace_pulses_per_s[a] = rate(trace_best[a]);
+  }
+  report.repeats = options.repeats;
+  report.prf_hz = scan.prf_hz;
+  return report;
+}
+
+}  // namespace owsim::cli

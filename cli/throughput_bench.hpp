@@ -1,0 +1,57 @@
+#pragma once
+// `owsim bench` as a function (DESIGN.md "Performance model", INTERFACE.md `owsim bench --json`):
+// the throughput figures of one scenario, all measured in one process on the same frames —
+// frames 0..N−1, the frames `owsim run SCENARIO --frames N` simulates.
+//   trace_only   — the frames' rays built once, then FrameTracer::trace alone over them, for each
+//                  Embree query form (per ray, stream, packets of 8); the fastest form wins;
+//   end_to_end   — everything `owsim run` does with the winning form (pattern, poses, rays,
+//                  trace, receiver, word packing) writing flight.d64 / flight.hellas into a
+//                  temporary folder, the other outputs off (as on a long flight, --outputs d64);
+//   single_thread — the same end-to-end run in a TBB arena of one thread;
+//   brute_force  — the source's method (every ray against every segment, cylinder and triangle)
+//                  on an evenly spread subset of the frames' pulses, on the same threads,
+//                  scaled to the whole frames.
+// Every figure counts all pulses of the frames (the reference fiber's too) per second of wall
+// time. Each timed figure is the best of `repeats` rounds (the rounds interleave the figures, so
+// a burst of load on a shared machine hits one round of each, and the best round is the one least
+// disturbed). peak_rss_mb is the process's peak resident set (getrusage), the stored rays
+// included.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "engine/frame_tracer.hpp"
+
+namespace owsim::cli {
+
+struct ThroughputOptions {
+  std::filesystem::path scenario = "examples/corridor.yaml";
+  std::int64_t frames = 30;
+  int threads = 0;                         // 0 = every core
+  int repeats = 3;                         // rounds; each figure is the best round
+  std::int64_t brute_force_pulses = 2048;  // the subset the brute-force tracer traces
+  bool progress = false;                   // a line per round on stderr
+};
+
+struct ThroughputReport {
+  std::string scenario;
+  std::int64_t frames = 0;
+  std::uint64_t pulses = 0;  // frames × pulses per frame
+  int threads = 0;
+  double end_to_end_pulses_per_s = 0.0;
+  double trace_only_pulses_per_s = 0.0;
+  double brute_force_pulses_per_s = 0.0;
+  double single_thread_pulses_per_s = 0.0;
+  double realtime_factor = 0.0;  // end_to_end / the sensor's PRF
+  TraceApi trace_api = TraceApi::stream;
+  double peak_rss_mb = 0.0;
+  // Not in INTERFACE.md's list, reported beside it:
+  std::uint64_t brute_force_pulses = 0;      // the subset actually traced
+  double trace_pulses_per_s[3] = {0, 0, 0};  // by TraceApi (per_ray, stream, packet8)
+  int repeats = 0;
+  double prf_hz = 0.0;
+};
+
+[[nodiscard]] ThroughputReport measure_throughput(const ThroughputOptions& options);
+
+}  // namespace owsim::cli

@@ -1,0 +1,19 @@
+// libFuzzer target: io/ardupilot_log_reader.hpp read_ardupilot_log on arbitrary text.
+// Any input must either read or throw owsim::Error (one line naming the file); any other
+// exception, a crash or a sanitizer report is a finding.
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "fuzz/fuzz_input_file.hpp"
+#include "geometry/error.hpp"
+#include "io/ardupilot_log_reader.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::string path = owsim::fuzz::write_input_file(data, size, ".log");
+  try {
+    (void)owsim::read_ardupilot_log(path);
+  } catch (const owsim::Error&) {
+  }
+  return 0;
+}

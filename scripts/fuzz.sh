@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets (fuzz/, clang -fsanitize=fuzzer,address,undefined) into
+# build-fuzz/ and runs each for a bounded time from its seed corpus (fuzz/corpus/<target>/),
+# printing the executions each ran. Exits non-zero when a target crashes; the crashing input is
+# left in build-fuzz/findings/<target>/ (make it a regression test in the reader's test file).
+# OWSIM_FUZZ_SECONDS sets the time per target (default 20).
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+build="${OWSIM_FUZZ_BUILD_DIR:-$root/build-fuzz}"
+seconds="${OWSIM_FUZZ_SECONDS:-20}"
+flags="-O1 -g -fno-omit-frame-pointer -fsanitize=fuzzer-no-link,address,undefined"
+flags+=" -fno-sanitize-recover=undefined"
+cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Debug \
+  -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_CXX_FLAGS="$flags" \
+  -DOWSIM_BUILD_TESTS=OFF -DOWSIM_BUILD_BENCH=OFF -DOWSIM_BUILD_FUZZ=ON >/dev/null
+targets=()
+for source in "$root"/fuzz/fuzz_*.cpp; do targets+=("$(basename "$source" .cpp)"); done
+cmake --build "$build" -j "$(nproc)" --target "${targets[@]}"
+
+export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1}"
+export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1}"
+failed=()
+for target in "${targets[@]}"; do
+  name=${target#fuzz_}
+  corpus="$build/corpus/$name"        # grows as the fuzzer runs; the seeds stay untouched
+  findings="$build/findings/$name"
+  mkdir -p "$corpus" "$findings"
+  log="$build/$target.log"
+  status=0
+  "$build/fuzz/$target" -max_total_time="$seconds" -rss_limit_mb=2048 -timeout=10 -max_len=8192 \
+    -artifact_prefix="$findings/" "$corpus" "$root/fuzz/corpus/$name" >"$log" 2>&1 || status=$?
+  runs=$(grep -oE 'Done [0-9]+ runs' "$log" | grep -oE '[0-9]+' || true)
+  if [ "$status" -ne 0 ]; then
+    echo "fuzz: $target FAILED (exit $status) — see $log and $findings/"
+    grep -E 'ERROR|runtime error|==ABORTING|terminate' "$log" | head -5 || true
+    failed+=("$target")
+  else
+    echo "fuzz: $target ${runs:-?} executions in ${seconds} s, no crash"
+  fi
+done
+if [ ${#failed[@]} -ne 0 ]; then
+  echo "fuzz: ${#failed[@]} target(s) crashed: ${failed[*]}"
+  exit 1
+fi

@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# Builds the tests with AddressSanitizer + UndefinedBehaviorSanitizer (-O1, any UB is fatal) into
+# build-asan/ and runs them. Embree, TBB and the other system libraries are not instrumented.
+# OWSIM_SANITIZE_EXCLUDE is a ctest regex of tests left out (default: none).
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+build="${OWSIM_SANITIZE_BUILD_DIR:-$root/build-asan}"
+flags="-O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=undefined"
+cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Debug \
+  -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
+  -DOWSIM_BUILD_BENCH=OFF >/dev/null
+cmake --build "$build" -j "$(nproc)"
+# Leak checking is on: the whole suite runs leak-free, TBB and Embree included.
+export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}"
+export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
+exclude=()
+if [ -n "${OWSIM_SANITIZE_EXCLUDE:-}" ]; then exclude=(-E "$OWSIM_SANITIZE_EXCLUDE"); fi
+ctest --test-dir "$build" -j "$(nproc)" --output-on-failure "${exclude[@]}"
