@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "engine/frame_tracer.hpp"
+#include "sensor/frame_rays.hpp"
 #include "sensor/frame_view.hpp"
 #include "sensor/mounting.hpp"
 #include "sensor/pose_source.hpp"
@@ -42,7 +43,8 @@ class FrameSimulator {
  public:
   FrameSimulator(const FrameSimulatorParams& params, const EmbreeScene& scene, TraceApi api);
 
-  // Pattern, rays and trace (parallel over chunks) and the receiver post-pass for one frame.
+  // Pattern, rays, trace and the receiver post-pass for one frame, in parallel over blocks of
+  // lines; the same result as build_rays, a trace and receive in turn.
   void simulate(std::int64_t frame, const PoseSource& poses, FrameResult& out) const;
   // The pattern and rays alone (no trace): what `trace-only` benchmarks and the brute-force
   // reference start from.
@@ -54,7 +56,12 @@ class FrameSimulator {
   [[nodiscard]] const FrameTracer& tracer() const { return tracer_; }
 
  private:
+  // Sizes out's buffers for the frame and sets its index and sweep.
+  void prepare(std::int64_t frame, const PoseSource& poses, FrameResult& out) const;
+  void receive_range(FrameResult& out, int begin, int end) const;
+
   FrameSimulatorParams params_;
+  FrameRayBuilder ray_builder_;
   FrameTracer tracer_;
 };
 

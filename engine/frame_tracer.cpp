@@ -6,6 +6,7 @@
 #include <array>
 #include <limits>
 
+#include "engine/flush_to_zero.hpp"
 #include "engine/trace_context.hpp"
 #include "geometry/error.hpp"
 #include "geometry/ray_triangle.hpp"
@@ -128,6 +129,7 @@ void FrameTracer::trace(std::span<const PulseRay> rays, std::span<const std::uin
   const auto count = static_cast<unsigned>(rays.size());
   tbb::parallel_for(tbb::blocked_range<unsigned>(0, count, kChunk),
                     [&](const tbb::blocked_range<unsigned>& range) {
+                      const FlushDenormalsToZero ftz;
                       for (unsigned begin = range.begin(); begin < range.end(); begin += kChunk) {
                         const unsigned end = std::min(range.end(), begin + kChunk);
                         trace_range(rays, active, candidates, begin, end);

@@ -35,11 +35,16 @@ Eigen::Vector3d ray_direction_body(SensorModel model, const Mount& mount, double
 }
 
 SensorPlacement sensor_placement(const Pose& pose, const Mount& mount, SensorModel model) {
+  return sensor_placement(pose, mount_rotation(mount) * model_rotation(model), mount.lever_arm_m);
+}
+
+SensorPlacement sensor_placement(const Pose& pose, const Eigen::Matrix3d& body_from_src,
+                                 const Eigen::Vector3d& lever_arm_m) {
   const Eigen::Matrix3d enu_from_body =
       pose.frame_from_local_enu * enu_from_ned_matrix() * body_to_ned(pose.attitude);
   SensorPlacement placement;
-  placement.enu_from_src = enu_from_body * mount_rotation(mount) * model_rotation(model);
-  placement.origin_enu_m = pose.position_enu_m + enu_from_body * mount.lever_arm_m;
+  placement.enu_from_src = enu_from_body * body_from_src;
+  placement.origin_enu_m = pose.position_enu_m + enu_from_body * lever_arm_m;
   return placement;
 }
 

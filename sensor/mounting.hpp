@@ -61,6 +61,10 @@ struct SensorPlacement {
 // origin = position + F · enu_from_ned · R(attitude) · lever_arm  (SENSOR-SPEC §4)
 [[nodiscard]] SensorPlacement sensor_placement(const Pose& pose, const Mount& mount,
                                                SensorModel model);
+// The same with body_from_src = R_mount · R_model made once by the caller.
+[[nodiscard]] SensorPlacement sensor_placement(const Pose& pose,
+                                               const Eigen::Matrix3d& body_from_src,
+                                               const Eigen::Vector3d& lever_arm_m);
 // The ray of fiber angle α and ray β in the frame's ENU axes, a unit vector  (SENSOR-SPEC §4)
 [[nodiscard]] Eigen::Vector3d ray_direction_enu(const SensorPlacement& placement, double alpha_deg,
                                                 double beta_deg);
