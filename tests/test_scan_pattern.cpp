@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstring>
 #include <set>
+#include <utility>
 #include <vector>
 
 #include "geometry/error.hpp"
@@ -192,6 +193,22 @@ TEST(ScanPattern, TimeTagBoundariesAndWrap) {
   EXPECT_EQ(hellas_time_tag(3600.0), 7'200'000 % 16'384);
   EXPECT_THROW((void)milows_time_tag(std::nan("")), Error);
   EXPECT_THROW((void)hellas_time_tag(INFINITY), Error);
+}
+
+// The tags are taken in integers below 2^62 ticks and with fmod above: both give the tick count
+// modulo the tag range, for times from microseconds to far beyond any flight.
+TEST(ScanPattern, TimeTagsAreTheTickCountModuloTheRangeAtAnyMagnitude) {
+  for (const double t :
+       {1e-5, 0.12345, 3.3e3, 7.7e7, 1.23456789e11, -2.5e13, 4.0e14, 3.0e15, -6.0e16, 1.0e20}) {
+    for (const auto& [ticks_per_s, modulus] :
+         {std::pair{1e4, 65'536.0}, std::pair{2e3, 16'384.0}}) {
+      const double ticks = t * ticks_per_s;
+      double want = std::fmod(std::floor(ticks + std::abs(ticks) * 1e-14), modulus);
+      if (want < 0) want += modulus;
+      const std::uint16_t got = modulus == 65'536.0 ? milows_time_tag(t) : hellas_time_tag(t);
+      EXPECT_EQ(got, static_cast<std::uint16_t>(want)) << t;
+    }
+  }
 }
 
 TEST(ScanPattern, JitterIsKeyedBySeedAndFrame) {
