@@ -3,7 +3,7 @@
 // of 8 (rtcIntersect8) — on one thread and on every core; and the brute-force reference tracer
 // (engine/brute_force_tracer.hpp, the source's method) on a slice of the same rays. Items are the
 // frame's pulses (the reference fiber's included, as `owsim bench` counts them) or, for brute
-// force, the rays traced.
+// force, the rays traced. BM_SimulateFrame is the whole frame simulation beside them.
 #include <benchmark/benchmark.h>
 #include <tbb/info.h>
 #include <tbb/task_arena.h>
@@ -40,6 +40,23 @@ BENCHMARK(BM_TraceFrame)
     ->ArgsProduct({{0, 1, 2}, {1, 0}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
+
+// The whole frame as the simulator does it (pattern, rays, the trace in the stream form, the
+// receiver), against which BM_TraceFrame/1 is the floor. Arg: threads (0 = every core).
+void BM_SimulateFrame(benchmark::State& state) {
+  const bench::BenchFixture& f = bench::bench_fixture();
+  const int threads =
+      state.range(0) > 0 ? static_cast<int>(state.range(0)) : tbb::info::default_concurrency();
+  FrameResult out;
+  tbb::task_arena arena(threads);
+  for (auto _ : state) {
+    arena.execute([&] { f.simulator.simulate(f.frame, f.trajectory, out); });
+    benchmark::DoNotOptimize(out.returns.data());
+  }
+  state.SetItemsProcessed(state.iterations() * f.pulses_per_frame());
+  state.counters["threads"] = threads;
+}
+BENCHMARK(BM_SimulateFrame)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // Every 10th active ray of the frame through the brute-force tracer, on one thread.
 void BM_BruteForceTrace(benchmark::State& state) {
