@@ -29,16 +29,17 @@ std::int64_t floor_div(std::int64_t a, std::int64_t b) {
   return (a % b != 0 && (a < 0) != (b < 0)) ? q - 1 : q;
 }
 
-// Problems after which the pulses cannot be numbered or their β rebuilt. Trailing bytes (the
-// incomplete word is ignored), counters beyond the timeout (read as no return), an encoder
-// reversal (β is read per word) and a HELLAS file without header (read as pulses) are not.
+// Problems after which the pulses cannot be numbered or their β rebuilt, or the file is not what
+// the sensor wrote (a size that is not a whole number of words: cut, or not a word file).
+// Counters beyond the timeout (read as no return), an encoder reversal (β is read per word) and a
+// HELLAS file without header (read as pulses) are not.
 bool blocks_decoding(RecordingIssueKind kind) {
   switch (kind) {
-    case RecordingIssueKind::trailing_bytes:
     case RecordingIssueKind::counter_beyond_timeout:
     case RecordingIssueKind::encoder_reversal:
     case RecordingIssueKind::missing_header:
       return false;
+    case RecordingIssueKind::trailing_bytes:
     case RecordingIssueKind::empty_file:
     case RecordingIssueKind::frame_length:
     case RecordingIssueKind::line_length:
@@ -54,6 +55,13 @@ bool blocks_decoding(RecordingIssueKind kind) {
 }
 
 void require_decodable(const std::filesystem::path& path, const RecordingReport& report) {
+  if (report.trailing_bytes > 0) {
+    throw input_error(path.string(), "cannot decode: " + std::to_string(report.file_bytes) +
+                                         " bytes is not a whole number of " +
+                                         std::to_string(report.word_bytes) + "-byte words (" +
+                                         std::to_string(report.trailing_bytes) + " trailing byte" +
+                                         (report.trailing_bytes == 1 ? "" : "s") + ")");
+  }
   std::uint64_t blocking = 0;
   for (int k = 0; k <= static_cast<int>(RecordingIssueKind::ain_pattern); ++k) {
     const auto kind = static_cast<RecordingIssueKind>(k);

@@ -6,10 +6,10 @@
 // Structure. io/recording_check.hpp walks the frame and line gates first (the same report as
 // `owsim info`); a recording it finds unsound is refused (a frame or line of the wrong length, a
 // frame gate without a line gate, a time-tag jump, HELLAS header/MovDir/NI faults), since its
-// pulses cannot be numbered. A recording may start mid-frame (even mid-line) and stop mid-frame:
-// the first frame gate numbers the pulses before it, so pulse i of the file is global pulse
-// n = n0 + i, frame ⌊n / pulses_per_frame⌋, pulse n mod pulses_per_frame. Trailing bytes of an
-// incomplete last word are ignored.
+// pulses cannot be numbered; so is a file whose size is not a whole number of words (cut inside
+// a word, or not a word file at all). A recording may start mid-frame (even mid-line) and stop
+// mid-frame: the first frame gate numbers the pulses before it, so pulse i of the file is global
+// pulse n = n0 + i, frame ⌊n / pulses_per_frame⌋, pulse n mod pulses_per_frame.
 //
 // Time. The time tags (MilOWS 100 µs, HELLAS 0.5 ms, cyclic) are unwrapped and t0 + i/PRF is fitted
 // to them: every tag u_i says u_i·tick ≤ t0 + i/PRF < (u_i + 1)·tick, and t0 is the middle of the

@@ -30,7 +30,7 @@
 // measured one (encoder or NI, within ±0.0018°).
 //
 // The merged file has the recording's format, frame structure and every other bit (the HELLAS
-// header word included); trailing bytes of an incomplete last word are not copied. It is written
+// header word included); a recording cut inside a word is refused by the decoder. It is written
 // through an AtomicOutputFile: nothing appears under its name until it is complete.
 #include <cstdint>
 #include <filesystem>

@@ -214,13 +214,53 @@ TEST_F(CliErrors, TruncatedSbetRecordNamesItsByte) {
                         {"track.sbet", "truncated record at byte 272"}, dir_ / "out");
 }
 
-TEST_F(CliErrors, RecordingOfPartialWordsIsRefused) {
-  // 3 whole MilOWS words and 5 bytes of a fourth.
+TEST_F(CliErrors, InfoReportsARecordingOfPartialWords) {
+  // 3 whole MilOWS words and 5 bytes of a fourth: a problem in the report, exit status 1.
   write_text(dir_ / "cut.d64", std::string(3 * 8 + 5, '\0'));
   const CliResult result = run_cli({"info", "cut.d64"}, dir_.path());
   EXPECT_NE(result.exit_status, 0);
   EXPECT_NE(result.out.find("5 trailing byte"), std::string::npos) << result.out;
   EXPECT_NE(result.out.find("word 3"), std::string::npos) << result.out;
+}
+
+struct CutRecording {
+  std::string model;       // the scenario's sensor.model
+  std::string file;        // what `owsim run` writes for it
+  std::string word_bytes;  // its word size
+  std::string trailing;    // what is left of the last word once 3 bytes are cut off
+};
+
+TEST_F(CliErrors, DecodeAndMergeRefuseARecordingOfPartialWords) {
+  // A sound one-frame recording from `owsim run`, cut 3 bytes short of its last whole word.
+  for (const CutRecording& cut :
+       {CutRecording{"milows", "flight.d64", "8", "5 trailing bytes"},
+        CutRecording{"hellas", "flight.hellas", "4", "1 trailing byte"}}) {
+    SCOPED_TRACE(cut.model);
+    write_text(dir_ / "rec.yaml", replaced(scenario(), "model: milows", "model: " + cut.model));
+    const CliResult run =
+        run_cli({"run", "rec.yaml", "--out", "rec", "--frames", "1", "--outputs", "d64", "--quiet"},
+                dir_.path());
+    ASSERT_EQ(run.exit_status, 0) << run.err;
+    const fs::path recording = dir_ / "rec" / cut.file;
+    const std::uintmax_t bytes = fs::file_size(recording) - 3;
+    fs::resize_file(recording, bytes);
+    const std::string name = "rec/" + cut.file;
+    const std::string line = "owsim: " + name + ": cannot decode: " + std::to_string(bytes) +
+                             " bytes is not a whole number of " + cut.word_bytes + "-byte words (" +
+                             cut.trailing + ")\n";
+
+    const CliResult decode =
+        run_cli({"decode", name, "--scenario", "rec.yaml", "--out", "out", "--quiet"}, dir_.path());
+    expect_one_line_error(decode, {}, dir_ / "out");
+    EXPECT_EQ(decode.err, line);
+
+    const CliResult merge =
+        run_cli({"merge", name, "--scenario", "rec.yaml", "--out",
+                 "out/merged" + fs::path(cut.file).extension().string(), "--quiet"},
+                dir_.path());
+    expect_one_line_error(merge, {}, dir_ / "out");
+    EXPECT_EQ(merge.err, line);
+  }
 }
 
 TEST_F(CliErrors, UnwritableOutputFolderIsOneLine) {

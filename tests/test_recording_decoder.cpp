@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -294,6 +295,26 @@ TEST_F(RecordingDecoderTest, UnsoundRecordingIsRefusedWithTheWordAtFault) {
     const std::string message = error.what();
     EXPECT_NE(message.find("cannot decode"), std::string::npos) << message;
     EXPECT_NE(message.find("word 127"), std::string::npos) << message;
+  }
+}
+
+TEST_F(RecordingDecoderTest, RecordingCutInsideAWordIsRefused) {
+  // Whole frames, sound but for the bytes of a word cut short: the size alone condemns it.
+  for (const ScanParams& scan : {milows_scan(), hellas_scan()}) {
+    const Simulated sim = simulate(scan, 0, 1);
+    const auto path = write(sim, 0, sim.pulses.size());
+    const std::uint64_t whole = std::filesystem::file_size(path);
+    { std::ofstream(path, std::ios::binary | std::ios::app) << std::string(3, '\0'); }
+    const std::string word_bytes = scan.model == SensorModel::milows ? "8" : "4";
+    try {
+      RecordingDecoder decoder(path, scan);
+      ADD_FAILURE() << "no error for " << path;
+    } catch (const Error& error) {
+      EXPECT_EQ(std::string(error.what()), path.string() +
+                                               ": cannot decode: " + std::to_string(whole + 3) +
+                                               " bytes is not a whole number of " + word_bytes +
+                                               "-byte words (3 trailing bytes)");
+    }
   }
 }
 
