@@ -2,40 +2,24 @@
 // for equal and unequal supports, the parameter against an independent scipy solve, the vertex
 // at S, the rejected inputs, and the polyline sampling within 1 mm with a modest point count.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
-#include <fstream>
 #include <limits>
 #include <sstream>
 #include <string>
 
 #include "geometry/catenary.hpp"
 #include "geometry/error.hpp"
+#include "python_oracle.hpp"
 
 namespace owsim {
 namespace {
 
-constexpr double kOnCurve = 1e-6;  // far inside the spec's 1 mm
+using test::run_python;
 
-// Runs a Python script with OWSIM_PYTHON and returns its stdout.
-std::string run_python(const std::string& script) {
-  const std::string path =
-      testing::TempDir() + "owsim_catenary_oracle_" + std::to_string(::getpid()) + ".py";
-  std::ofstream(path) << script;
-  std::string output;
-  if (FILE* pipe = ::popen((std::string(OWSIM_PYTHON) + " " + path).c_str(), "r")) {
-    std::array<char, 256> buffer{};
-    while (std::fgets(buffer.data(), buffer.size(), pipe)) output += buffer.data();
-    const int status = ::pclose(pipe);
-    EXPECT_EQ(status, 0) << output;
-  }
-  std::remove(path.c_str());
-  return output;
-}
+constexpr double kOnCurve = 1e-6;  // far inside the spec's 1 mm
 
 // An independent solve (scipy brentq): for a vertex position x0, the a that puts support 1 on
 // the curve, then the x0 that puts support 2 on it. Returns {a, x0}.

@@ -2,13 +2,8 @@
 // knots, has zero curvature at the ends, is C², is exact on straight lines, and matches
 // scipy.interpolate.CubicSpline(bc_type='natural') in value and slope.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
-#include <array>
 #include <cmath>
-#include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <limits>
 #include <random>
 #include <sstream>
@@ -16,37 +11,14 @@
 #include <vector>
 
 #include "geometry/error.hpp"
+#include "python_oracle.hpp"
 #include "sensor/cubic_spline.hpp"
 
 namespace owsim {
 namespace {
 
-// Runs `script` with OWSIM_PYTHON and returns what it printed.
-std::string run_python(const std::string& script) {
-  const std::filesystem::path path =
-      std::filesystem::temp_directory_path() /
-      ("owsim_test_cubic_spline_" + std::to_string(::getpid()) + ".py");
-  std::ofstream(path) << script;
-  const std::string command = std::string(OWSIM_PYTHON) + " " + path.string();
-  std::string output;
-  if (FILE* pipe = ::popen(command.c_str(), "r")) {
-    std::array<char, 4096> buffer{};
-    while (std::fgets(buffer.data(), buffer.size(), pipe)) output += buffer.data();
-    EXPECT_EQ(::pclose(pipe), 0) << output;
-  }
-  std::filesystem::remove(path);
-  return output;
-}
-
-std::string python_list(const std::vector<double>& values) {
-  std::string text = "[";
-  char number[40];
-  for (double value : values) {
-    std::snprintf(number, sizeof number, "%.17g,", value);
-    text += number;
-  }
-  return text + "]";
-}
+using test::python_list;
+using test::run_python;
 
 // Random strictly increasing knots with uneven steps, and random values.
 void random_knots(std::size_t n, std::uint64_t seed, std::vector<double>& x,

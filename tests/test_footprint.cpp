@@ -4,13 +4,13 @@
 
 #include <array>
 #include <cmath>
-#include <cstdio>
 #include <numbers>
 #include <random>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "python_oracle.hpp"
 #include "sensor/footprint.hpp"
 
 namespace owsim {
@@ -43,18 +43,9 @@ std::vector<double> scipy_overlaps() {
             "  a,_=dblquad(lambda y,x:1.0,lo,hi,lambda x:-math.sqrt(max(R*R-x*x,0)),"
             "lambda x:math.sqrt(max(R*R-x*x,0)),epsabs=1e-15,epsrel=1e-13)\n"
             "  print(repr(a))\n";
-  const std::string path = ::testing::TempDir() + "owsim_footprint_oracle.py";
-  if (FILE* file = std::fopen(path.c_str(), "w")) {
-    std::fputs(script.str().c_str(), file);
-    std::fclose(file);
-  }
+  std::istringstream output(test::run_python(script.str()));
   std::vector<double> areas;
-  const std::string command = std::string(OWSIM_PYTHON) + " " + path;
-  if (FILE* pipe = popen(command.c_str(), "r")) {
-    char line[128];
-    while (std::fgets(line, sizeof line, pipe)) areas.push_back(std::stod(line));
-    pclose(pipe);
-  }
+  for (double area = 0.0; output >> area;) areas.push_back(area);
   return areas;
 }
 

@@ -1,15 +1,10 @@
 // Protects the world frame of SENSOR-SPEC §4 "Decision (world frame)": exact local ENU on WGS-84
 // around the scenario origin, checked against pyproj (an independent ECEF implementation).
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <Eigen/LU>
 #include <GeographicLib/Geodesic.hpp>
-#include <array>
 #include <cmath>
-#include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <limits>
 #include <numbers>
 #include <random>
@@ -19,34 +14,15 @@
 
 #include "geometry/error.hpp"
 #include "geometry/geodetic_frame.hpp"
+#include "python_oracle.hpp"
 
 namespace owsim {
 namespace {
 
+using test::python_number;
+using test::run_python;
+
 const Geodetic kOrigin{48.6881, 10.8447, 450.0};  // the INTERFACE.md example origin
-
-// Runs `script` with OWSIM_PYTHON and returns what it printed.
-std::string run_python(const std::string& script) {
-  const std::filesystem::path path =
-      std::filesystem::temp_directory_path() /
-      ("owsim_test_geodetic_frame_" + std::to_string(::getpid()) + ".py");
-  std::ofstream(path) << script;
-  const std::string command = std::string(OWSIM_PYTHON) + " " + path.string();
-  std::string output;
-  if (FILE* pipe = ::popen(command.c_str(), "r")) {
-    std::array<char, 4096> buffer{};
-    while (std::fgets(buffer.data(), buffer.size(), pipe)) output += buffer.data();
-    EXPECT_EQ(::pclose(pipe), 0) << output;
-  }
-  std::filesystem::remove(path);
-  return output;
-}
-
-std::string python_number(double value) {
-  char text[40];
-  std::snprintf(text, sizeof text, "%.17g", value);
-  return text;
-}
 
 TEST(LocalFrame, OriginMapsToZero) {
   const LocalFrame frame(kOrigin);

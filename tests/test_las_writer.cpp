@@ -8,7 +8,6 @@
 #include <array>
 #include <bit>
 #include <cmath>
-#include <cstdio>
 #include <cstring>
 #include <ctime>
 #include <filesystem>
@@ -28,6 +27,7 @@
 #include "io/little_endian.hpp"
 #include "io/utm_wkt.hpp"
 #include "owsim/version.hpp"
+#include "python_oracle.hpp"
 
 namespace owsim {
 namespace {
@@ -43,20 +43,6 @@ class LasWriterTest : public ::testing::Test {
   void TearDown() override { std::filesystem::remove_all(directory_); }
 
   [[nodiscard]] std::filesystem::path path() const { return directory_ / "points.las"; }
-
-  // Runs `script` with OWSIM_PYTHON; returns what it printed (stdout and stderr).
-  std::string run_python(const std::string& script) const {
-    const std::filesystem::path file = directory_ / "oracle.py";
-    std::ofstream(file) << script;
-    const std::string command = std::string(OWSIM_PYTHON) + " " + file.string() + " 2>&1";
-    std::string output;
-    if (FILE* pipe = ::popen(command.c_str(), "r")) {
-      std::array<char, 4096> buffer{};
-      while (std::fgets(buffer.data(), buffer.size(), pipe)) output += buffer.data();
-      EXPECT_EQ(::pclose(pipe), 0) << output;
-    }
-    return output;
-  }
 
   std::filesystem::path directory_;
 };
@@ -324,18 +310,24 @@ void write_expected(const std::filesystem::path& path, const std::vector<PointRe
   }
 }
 
+// What the independent reader says of the LAS file `las` written from `points` in the grid
+// `epsg`: "OK <count>\n", or the assertion it failed.
+std::string python_reader_verdict(const std::filesystem::path& las,
+                                  const std::vector<PointRecord>& points, int epsg) {
+  const test::TempDir folder("owsim_las_oracle");
+  write_expected(folder / "expected.csv", points);
+  return test::run_python(kPythonLasReader,
+                          {.arguments = las.string() + " " + (folder / "expected.csv").string() +
+                                        " " + std::to_string(epsg),
+                           .with_stderr = true});
+}
+
 TEST_F(LasWriterTest, AnIndependentPythonReaderDecodesEveryPoint) {
   const auto points = scattered_points(kOrigin, 400, 2000.0, 11);
   LasWriter writer(path(), options_at(kOrigin));
   writer.write(points);
   writer.finish();
-  write_expected(directory_ / "expected.csv", points);
-  std::ofstream(directory_ / "reader.py") << kPythonLasReader;
-  const std::string output =
-      run_python("import sys, runpy\nsys.argv = ['reader.py', '" + path().string() + "', '" +
-                 (directory_ / "expected.csv").string() + "', '32632']\nrunpy.run_path('" +
-                 (directory_ / "reader.py").string() + "', run_name='__main__')\n");
-  EXPECT_EQ(output, "OK 400\n");
+  EXPECT_EQ(python_reader_verdict(path(), points, 32632), "OK 400\n");
 }
 
 TEST_F(LasWriterTest, AFlightAcrossTheZoneEdgeAndTheEquatorStaysInTheOriginsGrid) {
@@ -356,13 +348,7 @@ TEST_F(LasWriterTest, AFlightAcrossTheZoneEdgeAndTheEquatorStaysInTheOriginsGrid
   EXPECT_FALSE(writer.grid().northp);
   writer.write(points);
   writer.finish();
-  write_expected(directory_ / "expected.csv", points);
-  std::ofstream(directory_ / "reader.py") << kPythonLasReader;
-  const std::string output =
-      run_python("import sys, runpy\nsys.argv = ['reader.py', '" + path().string() + "', '" +
-                 (directory_ / "expected.csv").string() + "', '32732']\nrunpy.run_path('" +
-                 (directory_ / "reader.py").string() + "', run_name='__main__')\n");
-  EXPECT_EQ(output, "OK 300\n");
+  EXPECT_EQ(python_reader_verdict(path(), points, 32732), "OK 300\n");
 }
 
 TEST_F(LasWriterTest, NearThePoleTheGridIsUps) {
@@ -373,13 +359,7 @@ TEST_F(LasWriterTest, NearThePoleTheGridIsUps) {
   EXPECT_TRUE(writer.grid().northp);
   writer.write(points);
   writer.finish();
-  write_expected(directory_ / "expected.csv", points);
-  std::ofstream(directory_ / "reader.py") << kPythonLasReader;
-  const std::string output =
-      run_python("import sys, runpy\nsys.argv = ['reader.py', '" + path().string() + "', '" +
-                 (directory_ / "expected.csv").string() + "', '5041']\nrunpy.run_path('" +
-                 (directory_ / "reader.py").string() + "', run_name='__main__')\n");
-  EXPECT_EQ(output, "OK 200\n");
+  EXPECT_EQ(python_reader_verdict(path(), points, 5041), "OK 200\n");
 }
 
 TEST_F(LasWriterTest, CreationDateDefaultsToTodayUtc) {

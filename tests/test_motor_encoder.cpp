@@ -3,10 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdio>
 #include <sstream>
 #include <string>
 
+#include "python_oracle.hpp"
 #include "sensor/motor_encoder.hpp"
 
 namespace owsim {
@@ -21,19 +21,12 @@ TEST(MotorEncoder, PolynomialMatchesSpecCheckedValues) {
 
 TEST(MotorEncoder, PolynomialMatchesNumpyPolyval) {
   // Independent evaluation of the same table 4.1 coefficients with numpy.polyval.
-  const std::string command = std::string(OWSIM_PYTHON) +
-                              " -c \"import numpy as np; c=[4.6809e-17,-7.6174e-15,2.806e-14,"
-                              "-1.1676e-11,3.2275e-11,-3.6118e-8,-1.2932e-7,-0.00013677,"
-                              "-0.0017148,-1.5399,-115.91]; "
-                              "print(' '.join(repr(float(np.polyval(c, b))) for b in "
-                              "[-30,-25.5,-18,-7.25,0,3.125,18,29.9]))\"";
-  FILE* pipe = popen(command.c_str(), "r");
-  ASSERT_NE(pipe, nullptr);
-  std::string text;
-  char chunk[256];
-  while (std::fgets(chunk, sizeof chunk, pipe) != nullptr) text += chunk;
-  ASSERT_EQ(pclose(pipe), 0) << "python failed: " << text;
-  std::istringstream values(text);
+  std::istringstream values(test::run_python(
+      "import numpy as np\n"
+      "c = [4.6809e-17, -7.6174e-15, 2.806e-14, -1.1676e-11, 3.2275e-11, -3.6118e-8, -1.2932e-7,\n"
+      "     -0.00013677, -0.0017148, -1.5399, -115.91]\n"
+      "print(' '.join(repr(float(np.polyval(c, b))) for b in\n"
+      "               [-30, -25.5, -18, -7.25, 0, 3.125, 18, 29.9]))\n"));
   for (double beta : {-30.0, -25.5, -18.0, -7.25, 0.0, 3.125, 18.0, 29.9}) {
     double expected = 0.0;
     ASSERT_TRUE(values >> expected) << "at β = " << beta;

@@ -5,8 +5,6 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -16,9 +14,12 @@
 #include <vector>
 
 #include "io/ply_writer.hpp"
+#include "python_oracle.hpp"
 
 namespace owsim {
 namespace {
+
+using test::run_python;
 
 class PlyWriterTest : public ::testing::Test {
  protected:
@@ -31,21 +32,6 @@ class PlyWriterTest : public ::testing::Test {
   void TearDown() override { std::filesystem::remove_all(directory_); }
 
   [[nodiscard]] std::filesystem::path path() const { return directory_ / "points.ply"; }
-
-  // Runs `script` with OWSIM_PYTHON and the given arguments; returns stdout and stderr.
-  std::string run_python(const std::string& script, const std::string& arguments) const {
-    const std::filesystem::path file = directory_ / "reader.py";
-    std::ofstream(file) << script;
-    const std::string command =
-        std::string(OWSIM_PYTHON) + " " + file.string() + " " + arguments + " 2>&1";
-    std::string output;
-    if (FILE* pipe = ::popen(command.c_str(), "r")) {
-      std::array<char, 4096> buffer{};
-      while (std::fgets(buffer.data(), buffer.size(), pipe)) output += buffer.data();
-      EXPECT_EQ(::pclose(pipe), 0) << output;
-    }
-    return output;
-  }
 
   std::filesystem::path directory_;
 };
@@ -157,18 +143,20 @@ TEST_F(PlyWriterTest, AStrictPythonReaderAndNumpyReadEveryVertex) {
   EXPECT_EQ(writer.points_written(), points.size());
   EXPECT_EQ(std::filesystem::file_size(path()), ply_header(0).size() + 29 * points.size());
   write_expected(directory_ / "expected.csv", points);
-  EXPECT_EQ(
-      run_python(kPythonPlyReader, path().string() + " " + (directory_ / "expected.csv").string()),
-      "OK 50000\n");
+  EXPECT_EQ(run_python(kPythonPlyReader,
+                       {.arguments = path().string() + " " + (directory_ / "expected.csv").string(),
+                        .with_stderr = true}),
+            "OK 50000\n");
 }
 
 TEST_F(PlyWriterTest, AnEmptyCloudIsAValidFile) {
   PlyWriter writer(path());
   writer.finish();
   std::ofstream(directory_ / "expected.csv");
-  EXPECT_EQ(
-      run_python(kPythonPlyReader, path().string() + " " + (directory_ / "expected.csv").string()),
-      "OK 0\n");
+  EXPECT_EQ(run_python(kPythonPlyReader,
+                       {.arguments = path().string() + " " + (directory_ / "expected.csv").string(),
+                        .with_stderr = true}),
+            "OK 0\n");
 }
 
 TEST_F(PlyWriterTest, NothingUnderTheFinalNameBeforeFinishOrAfterAFailure) {

@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -23,6 +22,7 @@
 #include "geometry/geodetic_frame.hpp"
 #include "io/hellsim_reader.hpp"
 #include "io/scenario_loader.hpp"
+#include "python_oracle.hpp"
 #include "sensor/trajectory.hpp"
 
 namespace owsim {
@@ -316,20 +316,6 @@ TEST(RunOutputs, PointRowsAreTheWordsReturnsWithNoise) {
 
 // ---- geometry, through the Python oracle ----
 
-std::string run_python_oracle(const fs::path& setup) {
-  const std::string command = std::string(OWSIM_PYTHON) + " " + OWSIM_SOURCE_DIR +
-                              "/tests/oracles/run_outputs_oracle.py " + setup.string();
-  std::string output;
-  if (FILE* pipe = ::popen(command.c_str(), "r")) {
-    char chunk[4096];
-    std::size_t n = 0;
-    while ((n = std::fread(chunk, 1, sizeof chunk, pipe)) > 0) output.append(chunk, n);
-    const int status = ::pclose(pipe);
-    EXPECT_EQ(status, 0) << command << "\n" << output;
-  }
-  return output;
-}
-
 // The oracle's figures for the no-noise pylon_line run; the span numbers are the scenario's own
 // inputs (support heights, lowest point, ends, layout offsets), the catenary is solved in scipy.
 const nlohmann::json& pylon_line_figures() {
@@ -363,7 +349,9 @@ const nlohmann::json& pylon_line_figures() {
     setup["conductors"] = conductors;
     const fs::path path = run.dir() / "oracle_setup.json";
     std::ofstream(path) << setup.dump();
-    const std::string output = run_python_oracle(path);
+    const std::string output = test::run_python_file(
+        fs::path(OWSIM_SOURCE_DIR) / "tests" / "oracles" / "run_outputs_oracle.py",
+        {path.string()});
     return nlohmann::json::parse(output, nullptr, /*allow_exceptions=*/false);
   }();
   return figures;

@@ -2,50 +2,23 @@
 // 9/3 default reproduces cubics (interior and ends, uniform or not), cuts white noise by the
 // published centre-weight factor, and matches scipy.signal.savgol_filter(mode='interp').
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <array>
 #include <cmath>
-#include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <random>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "geometry/error.hpp"
+#include "python_oracle.hpp"
 #include "sensor/savitzky_golay.hpp"
 
 namespace owsim {
 namespace {
 
-// Runs `script` with OWSIM_PYTHON and returns what it printed.
-std::string run_python(const std::string& script) {
-  const std::filesystem::path path =
-      std::filesystem::temp_directory_path() /
-      ("owsim_test_savitzky_golay_" + std::to_string(::getpid()) + ".py");
-  std::ofstream(path) << script;
-  const std::string command = std::string(OWSIM_PYTHON) + " " + path.string();
-  std::string output;
-  if (FILE* pipe = ::popen(command.c_str(), "r")) {
-    std::array<char, 4096> buffer{};
-    while (std::fgets(buffer.data(), buffer.size(), pipe)) output += buffer.data();
-    EXPECT_EQ(::pclose(pipe), 0) << output;
-  }
-  std::filesystem::remove(path);
-  return output;
-}
-
-std::string python_list(const std::vector<double>& values) {
-  std::string text = "[";
-  char number[40];
-  for (double value : values) {
-    std::snprintf(number, sizeof number, "%.17g,", value);
-    text += number;
-  }
-  return text + "]";
-}
+using test::python_list;
+using test::run_python;
 
 std::vector<double> random_values(std::size_t n, std::uint64_t seed) {
   std::mt19937_64 rng(seed);

@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -16,10 +15,13 @@
 #include "geometry/error.hpp"
 #include "io/scenario_loader.hpp"
 #include "io/scene_builder.hpp"
+#include "python_oracle.hpp"
 #include "sensor/range_counter.hpp"
 
 namespace owsim {
 namespace {
+
+using test::run_python;
 
 // INTERFACE.md's example scenario, as printed there.
 constexpr const char* kInterfaceExample =
@@ -124,19 +126,6 @@ class TempFolder {
  private:
   std::filesystem::path path_;
 };
-
-std::string run_python(const std::string& script) {
-  const TempFolder folder("python");
-  const std::filesystem::path path = folder.write("oracle.py", script);
-  const std::string command = std::string(OWSIM_PYTHON) + " " + path.string();
-  std::string output;
-  if (FILE* pipe = ::popen(command.c_str(), "r")) {
-    std::array<char, 4096> buffer{};
-    while (std::fgets(buffer.data(), buffer.size(), pipe)) output += buffer.data();
-    EXPECT_EQ(::pclose(pipe), 0) << output;
-  }
-  return output;
-}
 
 std::string full(double value) {
   char text[40];

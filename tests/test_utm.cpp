@@ -2,13 +2,9 @@
 // published example, pyproj as an independent oracle, the zone exceptions, and the parser's
 // acceptance of zone designators and rejection of garbage.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <array>
 #include <cmath>
-#include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <random>
 #include <sstream>
 #include <string>
@@ -16,31 +12,13 @@
 
 #include "geometry/error.hpp"
 #include "geometry/utm.hpp"
+#include "python_oracle.hpp"
 
 namespace owsim {
 namespace {
 
-// Runs `script` with OWSIM_PYTHON and returns what it printed.
-std::string run_python(const std::string& script) {
-  const std::filesystem::path path = std::filesystem::temp_directory_path() /
-                                     ("owsim_test_utm_" + std::to_string(::getpid()) + ".py");
-  std::ofstream(path) << script;
-  const std::string command = std::string(OWSIM_PYTHON) + " " + path.string();
-  std::string output;
-  if (FILE* pipe = ::popen(command.c_str(), "r")) {
-    std::array<char, 4096> buffer{};
-    while (std::fgets(buffer.data(), buffer.size(), pipe)) output += buffer.data();
-    EXPECT_EQ(::pclose(pipe), 0) << output;
-  }
-  std::filesystem::remove(path);
-  return output;
-}
-
-std::string python_number(double value) {
-  char text[40];
-  std::snprintf(text, sizeof text, "%.17g", value);
-  return text;
-}
+using test::python_number;
+using test::run_python;
 
 TEST(Utm, GeographicLibPublishedExample) {
   // GeoConvert documentation: "33.3 44.4" → "38n 444140.54 3684706.36".

@@ -3,12 +3,7 @@
 // the right EPSG code, identifies it from the parameters alone, and projects a point to the
 // same easting/northing as GeographicLib.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
-#include <array>
-#include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -16,25 +11,12 @@
 #include "geometry/error.hpp"
 #include "geometry/utm.hpp"
 #include "io/utm_wkt.hpp"
+#include "python_oracle.hpp"
 
 namespace owsim {
 namespace {
 
-// Runs `script` with OWSIM_PYTHON and returns what it printed.
-std::string run_python(const std::string& script) {
-  const std::filesystem::path path = std::filesystem::temp_directory_path() /
-                                     ("owsim_test_utm_wkt_" + std::to_string(::getpid()) + ".py");
-  std::ofstream(path) << script;
-  const std::string command = std::string(OWSIM_PYTHON) + " " + path.string() + " 2>&1";
-  std::string output;
-  if (FILE* pipe = ::popen(command.c_str(), "r")) {
-    std::array<char, 4096> buffer{};
-    while (std::fgets(buffer.data(), buffer.size(), pipe)) output += buffer.data();
-    EXPECT_EQ(::pclose(pipe), 0) << output;
-  }
-  std::filesystem::remove(path);
-  return output;
-}
+using test::run_python;
 
 TEST(UtmWkt, NamesAndEpsgCodes) {
   EXPECT_EQ(utm_crs_name(32, true), "WGS 84 / UTM zone 32N");
@@ -94,7 +76,7 @@ TEST(UtmWkt, PyprojParsesEveryZoneToItsEpsgCodeAndProjectsLikeGeographicLib) {
             "    e, n = t.transform(lon, lat)\n"
             "    print(code, bare.to_epsg(min_confidence=90), "
             "int(bare.equals(CRS.from_epsg(code))), repr(e), repr(n))\n";
-  std::istringstream output(run_python(script.str()));
+  std::istringstream output(run_python(script.str(), {.with_stderr = true}));
   for (const Case& c : cases) {
     SCOPED_TRACE(utm_crs_name(c.zone, c.northp));
     int code = 0, bare_code = 0, equal = 0;
