@@ -1,6 +1,7 @@
 #include "io/atomic_output_file.hpp"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -38,6 +39,39 @@ AtomicOutputFile::AtomicOutputFile(std::filesystem::path final_path, AtomicOutpu
   if (final_path_.empty()) throw Error("output file: empty path");
   file_ = std::fopen(partial_path_.c_str(), "wb");
   if (file_ == nullptr) fail("cannot create " + partial_path_.string(), errno);
+}
+
+AtomicOutputFile::AtomicOutputFile(Adopt, std::filesystem::path final_path,
+                                   AtomicOutputOptions options)
+    : final_path_(std::move(final_path)),
+      partial_path_(partial_path_for(final_path_)),
+      options_(options),
+      committed_(true) {}  // until the temporary is adopted, it is not this object's to remove
+
+AtomicOutputFile AtomicOutputFile::resume(std::filesystem::path final_path, std::uint64_t bytes,
+                                          AtomicOutputOptions options) {
+  AtomicOutputFile file(Adopt{}, std::move(final_path), options);
+  if (file.final_path_.empty()) throw Error("output file: empty path");
+  errno = 0;
+  file.file_ = std::fopen(file.partial_path_.c_str(), "r+b");
+  if (file.file_ == nullptr) file.fail("cannot resume from " + file.partial_path_.string(), errno);
+  struct stat status {};
+  if (::fstat(::fileno(file.file_), &status) != 0) {
+    file.fail("cannot resume from " + file.partial_path_.string(), errno);
+  }
+  const auto size = static_cast<std::uint64_t>(status.st_size);
+  if (size < bytes) {
+    file.fail("cannot resume: " + file.partial_path_.string() + " holds " + std::to_string(size) +
+                  " bytes, the checkpoint " + std::to_string(bytes),
+              0);
+  }
+  if (::ftruncate(::fileno(file.file_), static_cast<off_t>(bytes)) != 0 ||
+      ::fseeko(file.file_, 0, SEEK_END) != 0) {
+    file.fail("cannot resume from " + file.partial_path_.string(), errno);
+  }
+  file.bytes_written_ = bytes;
+  file.committed_ = false;
+  return file;
 }
 
 AtomicOutputFile::AtomicOutputFile(AtomicOutputFile&& other) noexcept
@@ -97,6 +131,12 @@ void AtomicOutputFile::write_at(std::uint64_t offset, const void* data, std::siz
       ::fseeko(file_, 0, SEEK_END) != 0) {
     fail("cannot write " + partial_path_.string(), errno);
   }
+}
+
+void AtomicOutputFile::flush() {
+  require_open("flush");
+  errno = 0;
+  if (std::fflush(file_) != 0) fail("cannot write " + partial_path_.string(), errno);
 }
 
 void AtomicOutputFile::commit() {

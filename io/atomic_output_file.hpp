@@ -8,6 +8,10 @@
 // loop — the temporary is removed and an existing file under the final name is left untouched.
 // Every failure (cannot create, disk full on write/flush/close, rename) throws owsim::Error whose
 // message starts with the final path. Not thread-safe: one writer per file.
+//
+// A killed process runs no destructor, so its `.partial` survives: resume() adopts it, cut back to
+// the size it had at a checkpoint (flush() had handed those bytes to the kernel, which keeps them
+// when the process dies), and appends from there (`owsim run --resume`).
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
@@ -24,6 +28,12 @@ class AtomicOutputFile {
  public:
   // Creates (or truncates) `<final_path>.partial`. The directory must exist.
   explicit AtomicOutputFile(std::filesystem::path final_path, AtomicOutputOptions options = {});
+  // Reopens the `<final_path>.partial` an interrupted writer left, cut to its first `bytes` bytes,
+  // for appending. Throws owsim::Error naming the final path if the temporary is missing or holds
+  // fewer than `bytes` bytes.
+  [[nodiscard]] static AtomicOutputFile resume(std::filesystem::path final_path,
+                                               std::uint64_t bytes,
+                                               AtomicOutputOptions options = {});
   AtomicOutputFile(AtomicOutputFile&& other) noexcept;
   AtomicOutputFile& operator=(AtomicOutputFile&&) = delete;
   AtomicOutputFile(const AtomicOutputFile&) = delete;
@@ -36,6 +46,9 @@ class AtomicOutputFile {
   // Overwrites bytes already written (e.g. a header whose counts are known only at the end);
   // [offset, offset + size) must lie within bytes_written(). Later write() calls still append.
   void write_at(std::uint64_t offset, const void* data, std::size_t size);
+  // Hands every byte written so far to the kernel (no fsync): they survive the process being
+  // killed, and the temporary then holds exactly bytes_written() bytes.
+  void flush();
   // Makes the file appear under its final name, complete. Nothing may be written afterwards.
   void commit();
 
@@ -49,6 +62,8 @@ class AtomicOutputFile {
       const std::filesystem::path& final_path);
 
  private:
+  struct Adopt {};
+  AtomicOutputFile(Adopt, std::filesystem::path final_path, AtomicOutputOptions options);
   [[noreturn]] void fail(std::string_view what, int error_number) const;
   void require_open(std::string_view operation) const;
 

@@ -1,6 +1,10 @@
 #include "io/flight_summary.hpp"
 
 #include <algorithm>
+#include <string>
+#include <utility>
+
+#include "geometry/error.hpp"
 
 namespace owsim {
 namespace {
@@ -25,16 +29,30 @@ FlightSummary::FlightSummary(const Scene& scene) {
   }
 }
 
+void FlightSummary::restore(FlightSummaryCheckpoint from) {
+  bool same_objects = from.objects.size() == objects_.size();
+  for (std::size_t i = 0; same_objects && i < objects_.size(); ++i) {
+    same_objects =
+        from.objects[i].id == objects_[i].id && from.objects[i].surface == objects_[i].surface;
+  }
+  if (!same_objects) {
+    throw Error("summary: cannot resume: the checkpoint's " + std::to_string(from.objects.size()) +
+                " objects are not the scene's " + std::to_string(objects_.size()));
+  }
+  counts_ = from.counts;
+  objects_ = std::move(from.objects);
+}
+
 void FlightSummary::add_frame(std::int64_t frame, std::span<const Pulse> pulses,
                               std::span<const PulseReturns> returns) {
-  ++frames_;
-  pulses_ += pulses.size();
+  ++counts_.frames;
+  counts_.pulses += pulses.size();
   for (std::size_t k = 0; k < returns.size(); ++k) {
     const PulseReturns& pulse_returns = returns[k];
-    if (pulse_returns.count >= 2) ++second_returns_;
+    if (pulse_returns.count >= 2) ++counts_.second_returns;
     for (int r = 0; r < pulse_returns.count; ++r) {
       const Return& ret = pulse_returns.returns[r];
-      ++returns_by_class_[std::min<std::size_t>(ret.surface, 3)];
+      ++counts_.returns_by_class[std::min<std::size_t>(ret.surface, 3)];
       if (ret.object_index >= objects_.size()) continue;  // the ground
       ObjectTruth& truth = objects_[ret.object_index];
       ++truth.returns;
@@ -62,14 +80,14 @@ nlohmann::json FlightSummary::to_json() const {
                        {"first_seen_range_m", optional_number(truth.first_seen_range_m)},
                        {"min_range_m", optional_number(truth.min_range_m)}});
   }
-  return {{"frames", frames_},
-          {"pulses", pulses_},
+  return {{"frames", counts_.frames},
+          {"pulses", counts_.pulses},
           {"returns",
            {{"wire", returns_of(SurfaceClass::wire)},
             {"pole", returns_of(SurfaceClass::pole)},
             {"tree", returns_of(SurfaceClass::tree)},
             {"ground", returns_of(SurfaceClass::ground)}}},
-          {"second_returns", second_returns_},
+          {"second_returns", counts_.second_returns},
           {"objects", objects}};
 }
 

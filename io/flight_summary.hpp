@@ -1,10 +1,11 @@
 #pragma once
 // summary.json of `owsim run` (INTERFACE.md): totals of the flight and, per scenario object (each
 // conductor on its own), when and from how far the sensor first saw it — the ground truth that
-// obstacle-detection software is scored against. Fed one frame at a time, in frame order.
-#include <nlohmann/json.hpp>
-
+// obstacle-detection software is scored against. Fed one frame at a time, in frame order;
+// checkpoint() and restore() carry the totals across an interrupted run (`owsim run --resume`).
+#include <array>
 #include <cstdint>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <span>
 #include <string>
@@ -25,6 +26,23 @@ struct ObjectTruth {
   std::optional<double> first_seen_range_m;  // the true range of the first return on it
   std::optional<double> min_range_m;
   std::int64_t last_frame_seen = -1;
+  friend bool operator==(const ObjectTruth&, const ObjectTruth&) = default;
+};
+
+// The flight's totals, by SurfaceClass for the returns.
+struct FlightCounts {
+  std::uint64_t frames = 0;
+  std::uint64_t pulses = 0;
+  std::array<std::uint64_t, 4> returns_by_class{};
+  std::uint64_t second_returns = 0;
+  friend bool operator==(const FlightCounts&, const FlightCounts&) = default;
+};
+
+// Everything a FlightSummary has accumulated.
+struct FlightSummaryCheckpoint {
+  FlightCounts counts;
+  std::vector<ObjectTruth> objects;
+  friend bool operator==(const FlightSummaryCheckpoint&, const FlightSummaryCheckpoint&) = default;
 };
 
 class FlightSummary {
@@ -37,12 +55,17 @@ class FlightSummary {
                  std::span<const PulseReturns> returns);
 
   [[nodiscard]] const std::vector<ObjectTruth>& objects() const { return objects_; }
-  [[nodiscard]] std::uint64_t frames() const { return frames_; }
-  [[nodiscard]] std::uint64_t pulses() const { return pulses_; }
+  [[nodiscard]] std::uint64_t frames() const { return counts_.frames; }
+  [[nodiscard]] std::uint64_t pulses() const { return counts_.pulses; }
   [[nodiscard]] std::uint64_t returns_of(SurfaceClass surface) const {
-    return returns_by_class_[static_cast<std::size_t>(surface)];
+    return counts_.returns_by_class[static_cast<std::size_t>(surface)];
   }
-  [[nodiscard]] std::uint64_t second_returns() const { return second_returns_; }
+  [[nodiscard]] std::uint64_t second_returns() const { return counts_.second_returns; }
+
+  [[nodiscard]] FlightSummaryCheckpoint checkpoint() const { return {counts_, objects_}; }
+  // Continues from the state of a summary of the same scene. Throws owsim::Error if the objects'
+  // ids or classes differ from this scene's.
+  void restore(FlightSummaryCheckpoint from);
 
   // Everything of INTERFACE.md's summary.json that the frames determine; the caller adds run
   // facts (scenario, seed, wall time, threads, version).
@@ -50,10 +73,7 @@ class FlightSummary {
 
  private:
   std::vector<ObjectTruth> objects_;
-  std::uint64_t frames_ = 0;
-  std::uint64_t pulses_ = 0;
-  std::uint64_t returns_by_class_[4] = {0, 0, 0, 0};
-  std::uint64_t second_returns_ = 0;
+  FlightCounts counts_;
 };
 
 }  // namespace owsim

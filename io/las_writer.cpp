@@ -97,10 +97,10 @@ LasDate las_date_utc(std::int64_t seconds_since_epoch) {
   return {static_cast<int>((day - new_year).count()) + 1, static_cast<int>(date.year())};
 }
 
-LasWriter::LasWriter(std::filesystem::path final_path, const LasWriterOptions& options)
-    : file_(std::move(final_path), options.file),
+LasWriter::LasWriter(AtomicOutputFile file, const LasWriterOptions& options, LasDate creation_date)
+    : file_(std::move(file)),
       intensity_full_scale_(options.intensity_full_scale),
-      creation_date_(options.creation_date.value_or(las_date_utc(std::time(nullptr)))),
+      creation_date_(creation_date),
       buffer_(kBufferPoints * kLasPointRecordBytes) {
   const std::string where = file_.final_path().string();
   if (!(options.scale_m > 0) || !std::isfinite(options.scale_m)) {
@@ -118,10 +118,15 @@ LasWriter::LasWriter(std::filesystem::path final_path, const LasWriterOptions& o
                     std::round(origin.northing_m / kOffsetRoundingEnM) * kOffsetRoundingEnM,
                     std::round(options.origin.h_m / kOffsetRoundingUpM) * kOffsetRoundingUpM};
 
-  const std::string wkt = utm_wkt(grid_.zone, grid_.northp);
-  const std::size_t wkt_bytes = wkt.size() + 1;  // null-terminated
+  const std::size_t wkt_bytes = utm_wkt(grid_.zone, grid_.northp).size() + 1;  // null-terminated
   offset_to_points_ = static_cast<std::uint32_t>(kLasHeaderBytes + kLasVlrHeaderBytes + wkt_bytes);
+}
 
+LasWriter::LasWriter(std::filesystem::path final_path, const LasWriterOptions& options)
+    : LasWriter(AtomicOutputFile(std::move(final_path), options.file), options,
+                options.creation_date.value_or(las_date_utc(std::time(nullptr)))) {
+  const std::string wkt = utm_wkt(grid_.zone, grid_.northp);
+  const std::size_t wkt_bytes = wkt.size() + 1;
   const auto header = header_bytes();
   file_.write(header.data(), header.size());
   std::array<unsigned char, kLasVlrHeaderBytes> vlr{};
@@ -131,6 +136,37 @@ LasWriter::LasWriter(std::filesystem::path final_path, const LasWriterOptions& o
   put_text(vlr.data(), 22, 32, "OGC coordinate system WKT");
   file_.write(vlr.data(), vlr.size());
   file_.write(wkt.c_str(), wkt_bytes);
+}
+
+LasWriter LasWriter::resume(std::filesystem::path final_path, const LasWriterOptions& options,
+                            const LasCheckpoint& from) {
+  std::uint64_t by_return = 0;
+  for (const std::uint64_t count : from.points_by_return) by_return += count;
+  LasWriter writer(
+      AtomicOutputFile::resume(std::move(final_path), from.file.file_bytes, options.file), options,
+      from.creation_date);
+  if (by_return != from.file.records ||
+      from.file.file_bytes != writer.offset_to_points_ + from.file.records * kLasPointRecordBytes) {
+    throw input_error(writer.file_.final_path().string(),
+                      "cannot resume: the checkpoint's " + std::to_string(from.file.file_bytes) +
+                          " bytes do not hold its " + std::to_string(from.file.records) +
+                          " points (" + std::to_string(by_return) + " by return)");
+  }
+  writer.points_written_ = from.file.records;
+  writer.points_by_return_ = from.points_by_return;
+  writer.min_record_ = from.min_record;
+  writer.max_record_ = from.max_record;
+  return writer;
+}
+
+LasCheckpoint LasWriter::checkpoint() {
+  flush_buffer();
+  file_.flush();
+  return {{file_.bytes_written(), points_written_},
+          points_by_return_,
+          min_record_,
+          max_record_,
+          creation_date_};
 }
 
 std::array<unsigned char, kLasHeaderBytes> LasWriter::header_bytes() const {

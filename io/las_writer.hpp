@@ -27,6 +27,8 @@
 // has; bit 4 (WKT) is set, as format 6 requires. The legacy point counts are 0, as R15 requires
 // for formats ≥ 6; the 64-bit counts hold the totals. System identifier "owsim", generating
 // software "owsim <version>", file creation day and year (UTC) of today unless given.
+// checkpoint() and resume() let an interrupted run continue the file: the checkpoint holds the
+// header's statistics and creation day, so the finished file is the uninterrupted one's.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -39,6 +41,7 @@
 #include "geometry/scene.hpp"
 #include "io/atomic_output_file.hpp"
 #include "io/point_record.hpp"
+#include "io/writer_checkpoint.hpp"
 
 namespace owsim {
 
@@ -52,6 +55,7 @@ inline constexpr std::uint16_t kLasGlobalEncodingWkt = 1u << 4;
 struct LasDate {
   int day_of_year = 1;  // 1..366, January 1 is day 1 (GMT)
   int year = 1970;
+  friend bool operator==(const LasDate&, const LasDate&) = default;
 };
 
 struct LasWriterOptions {
@@ -70,11 +74,28 @@ struct LasGrid {
   double scale_m = 0.0001;
 };
 
+// What a LasWriter must remember to continue a file: where the file stood (records = points)
+// and the header's statistics so far.
+struct LasCheckpoint {
+  WriterCheckpoint file;
+  std::array<std::uint64_t, 15> points_by_return{};
+  std::array<std::int32_t, 3> min_record{};  // stored X, Y, Z; meaningful once a point is written
+  std::array<std::int32_t, 3> max_record{};
+  LasDate creation_date;
+  friend bool operator==(const LasCheckpoint&, const LasCheckpoint&) = default;
+};
+
 class LasWriter final : public PointSink {
  public:
   // Writes the header and the WKT record. Throws owsim::Error on a bad origin, a scale that is
   // not positive, or a full scale that is not positive.
   LasWriter(std::filesystem::path final_path, const LasWriterOptions& options);
+  // Continues the temporary file an interrupted writer with the same options left at `from`
+  // (bytes after it are cut off; the creation date is the checkpoint's). Throws owsim::Error
+  // naming the path for what the constructor rejects, a missing or shorter temporary, or a
+  // checkpoint whose counts do not fit its size.
+  [[nodiscard]] static LasWriter resume(std::filesystem::path final_path,
+                                        const LasWriterOptions& options, const LasCheckpoint& from);
 
   // Throws owsim::Error if a point lies outside the int32 range around the offset, outside the
   // grid's valid range (GeographicLib UTMUPS), or has a return number outside
@@ -84,8 +105,11 @@ class LasWriter final : public PointSink {
   void finish() override;
   [[nodiscard]] std::uint64_t points_written() const override { return points_written_; }
   [[nodiscard]] const LasGrid& grid() const { return grid_; }
+  // Hands every point written so far to the kernel; where to resume from.
+  [[nodiscard]] LasCheckpoint checkpoint();
 
  private:
+  LasWriter(AtomicOutputFile file, const LasWriterOptions& options, LasDate creation_date);
   void append_point(const PointRecord& point);
   void flush_buffer();
   [[nodiscard]] std::array<unsigned char, kLasHeaderBytes> header_bytes() const;

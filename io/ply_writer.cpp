@@ -1,9 +1,11 @@
 #include "io/ply_writer.hpp"
 
 #include <bit>
+#include <string>
 #include <string_view>
 #include <utility>
 
+#include "geometry/error.hpp"
 #include "io/little_endian.hpp"
 #include "owsim/version.hpp"
 
@@ -56,9 +58,31 @@ std::string ply_header(std::uint64_t vertex_count) {
   return header;
 }
 
+PlyWriter::PlyWriter(AtomicOutputFile file, std::uint64_t points_written)
+    : file_(std::move(file)),
+      buffer_(kBufferVertices * kPlyVertexBytes),
+      points_written_(points_written) {}
+
 PlyWriter::PlyWriter(std::filesystem::path final_path, AtomicOutputOptions options)
-    : file_(std::move(final_path), options), buffer_(kBufferVertices * kPlyVertexBytes) {
+    : PlyWriter(AtomicOutputFile(std::move(final_path), options), 0) {
   file_.write(ply_header(0));
+}
+
+PlyWriter PlyWriter::resume(std::filesystem::path final_path, const WriterCheckpoint& from,
+                            AtomicOutputOptions options) {
+  if (from.file_bytes != ply_header(0).size() + from.records * kPlyVertexBytes) {
+    throw input_error(final_path.string(),
+                      "cannot resume: the checkpoint's " + std::to_string(from.file_bytes) +
+                          " bytes do not hold its " + std::to_string(from.records) + " vertices");
+  }
+  return PlyWriter(AtomicOutputFile::resume(std::move(final_path), from.file_bytes, options),
+                   from.records);
+}
+
+WriterCheckpoint PlyWriter::checkpoint() {
+  flush_buffer();
+  file_.flush();
+  return {file_.bytes_written(), points_written_};
 }
 
 void PlyWriter::write(std::span<const PointRecord> points) {

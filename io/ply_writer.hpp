@@ -11,8 +11,8 @@
 // of N (room for any 64-bit count), and finish() rewrites the header in place with the real
 // count. Every header line is an ordinary PLY line (a keyword and single-space separated
 // words), so strict readers accept it. Vertices go through a 1 MiB buffer into an
-// AtomicOutputFile: nothing appears under the final name before finish(). Errors throw
-// owsim::Error naming the path.
+// AtomicOutputFile: nothing appears under the final name before finish(); checkpoint() and
+// resume() let an interrupted run continue the file. Errors throw owsim::Error naming the path.
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -24,6 +24,7 @@
 #include "geometry/scene.hpp"
 #include "io/atomic_output_file.hpp"
 #include "io/point_record.hpp"
+#include "io/writer_checkpoint.hpp"
 
 namespace owsim {
 
@@ -34,13 +35,22 @@ class PlyWriter final : public PointSink {
  public:
   // Writes the header with a count of 0.
   explicit PlyWriter(std::filesystem::path final_path, AtomicOutputOptions options = {});
+  // Continues the temporary file an interrupted writer left at `from` (bytes after it are cut
+  // off). Throws owsim::Error naming the path if the temporary is missing or shorter, or if
+  // `from` does not hold a header and whole vertices.
+  [[nodiscard]] static PlyWriter resume(std::filesystem::path final_path,
+                                        const WriterCheckpoint& from,
+                                        AtomicOutputOptions options = {});
 
   void write(std::span<const PointRecord> points) override;
   // Rewrites the header with the vertex count and renames the file to its final name.
   void finish() override;
   [[nodiscard]] std::uint64_t points_written() const override { return points_written_; }
+  // Hands every vertex written so far to the kernel; where to resume from.
+  [[nodiscard]] WriterCheckpoint checkpoint();
 
  private:
+  PlyWriter(AtomicOutputFile file, std::uint64_t points_written);
   void flush_buffer();
 
   AtomicOutputFile file_;

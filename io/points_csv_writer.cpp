@@ -66,9 +66,9 @@ std::string csv_cell(std::string_view text) {
   return cell;
 }
 
-PointsCsvWriter::PointsCsvWriter(std::filesystem::path final_path,
-                                 std::vector<std::string> object_ids, AtomicOutputOptions options)
-    : file_(std::move(final_path), options) {
+PointsCsvWriter::PointsCsvWriter(AtomicOutputFile file, std::vector<std::string> object_ids,
+                                 std::uint64_t points_written)
+    : file_(std::move(file)), points_written_(points_written) {
   object_cells_.reserve(object_ids.size());
   std::size_t longest_cell = 0;
   for (const std::string& id : object_ids) {
@@ -77,8 +77,26 @@ PointsCsvWriter::PointsCsvWriter(std::filesystem::path final_path,
   }
   // Room for one more row beyond the flush mark, so appending a row never reallocates.
   buffer_.reserve(kFlushBytes + kRowBytesMax + longest_cell);
+}
+
+PointsCsvWriter::PointsCsvWriter(std::filesystem::path final_path,
+                                 std::vector<std::string> object_ids, AtomicOutputOptions options)
+    : PointsCsvWriter(AtomicOutputFile(std::move(final_path), options), std::move(object_ids), 0) {
   buffer_ += kPointsCsvHeader;
   buffer_ += '\n';
+}
+
+PointsCsvWriter PointsCsvWriter::resume(std::filesystem::path final_path,
+                                        std::vector<std::string> object_ids,
+                                        const WriterCheckpoint& from, AtomicOutputOptions options) {
+  return PointsCsvWriter(AtomicOutputFile::resume(std::move(final_path), from.file_bytes, options),
+                         std::move(object_ids), from.records);
+}
+
+WriterCheckpoint PointsCsvWriter::checkpoint() {
+  flush_buffer();
+  file_.flush();
+  return {file_.bytes_written(), points_written_};
 }
 
 void PointsCsvWriter::append_row(const PointRecord& point) {

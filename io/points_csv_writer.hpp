@@ -10,7 +10,8 @@
 // `object` is the record's entry of the object-id table (RFC 4180 quoted if it holds a comma,
 // quote or line break), empty for kNoObject; energy_rel and incidence_deg are empty when NaN.
 // Lines end with "\n". Rows go through a 1 MiB buffer into an AtomicOutputFile: nothing appears
-// under the final name before finish(). Errors throw owsim::Error naming the path.
+// under the final name before finish(); checkpoint() and resume() let an interrupted run continue
+// the file. Errors throw owsim::Error naming the path.
 #include <cstdint>
 #include <filesystem>
 #include <span>
@@ -20,6 +21,7 @@
 
 #include "io/atomic_output_file.hpp"
 #include "io/point_record.hpp"
+#include "io/writer_checkpoint.hpp"
 
 namespace owsim {
 
@@ -32,13 +34,23 @@ class PointsCsvWriter final : public PointSink {
   // object_ids[i] is the `object` cell of a record with object_index i. Writes the header line.
   PointsCsvWriter(std::filesystem::path final_path, std::vector<std::string> object_ids,
                   AtomicOutputOptions options = {});
+  // Continues the temporary file an interrupted writer left at `from` (bytes after it are cut
+  // off). Throws owsim::Error naming the path if the temporary is missing or shorter.
+  [[nodiscard]] static PointsCsvWriter resume(std::filesystem::path final_path,
+                                              std::vector<std::string> object_ids,
+                                              const WriterCheckpoint& from,
+                                              AtomicOutputOptions options = {});
 
   // Throws owsim::Error if a record's object_index is neither kNoObject nor in the table.
   void write(std::span<const PointRecord> points) override;
   void finish() override;
   [[nodiscard]] std::uint64_t points_written() const override { return points_written_; }
+  // Hands every row written so far to the kernel; where to resume from.
+  [[nodiscard]] WriterCheckpoint checkpoint();
 
  private:
+  PointsCsvWriter(AtomicOutputFile file, std::vector<std::string> object_ids,
+                  std::uint64_t points_written);
   void append_row(const PointRecord& point);
   void flush_buffer();
 

@@ -331,6 +331,20 @@ void Quicklook::write_range_image(const FrameView& frame) {
             enlarged(frame_cells_, options_.range_image_scale), options_.file_options);
 }
 
+QuicklookCheckpoint Quicklook::checkpoint() const { return {mask_, last_trajectory_px_}; }
+
+void Quicklook::restore(QuicklookCheckpoint from) {
+  require_open("restore");
+  if (from.map_mask.size() != mask_.size()) {
+    throw input_error("quicklook", "cannot resume: a map mask of " +
+                                       std::to_string(from.map_mask.size()) + " bytes for " +
+                                       std::to_string(base_.width()) + " × " +
+                                       std::to_string(base_.height()) + " pixels");
+  }
+  mask_ = std::move(from.map_mask);
+  last_trajectory_px_ = from.last_trajectory_px;
+}
+
 void Quicklook::finish() {
   require_open("finish");
   finished_ = true;

@@ -27,7 +27,8 @@
 // one-byte-per-pixel mask of the map as they arrive (every return of every frame, hit point = ray
 // origin + range_m · direction), so the memory is 4 bytes per map pixel (4 MiB at 1024²) plus one
 // range image. Each PNG is encoded in memory and written atomically (no partial file under its
-// final name). Errors throw owsim::Error.
+// final name). checkpoint() and restore() carry the map's state across an interrupted run
+// (`owsim run --resume`), so its map.png is the uninterrupted run's. Errors throw owsim::Error.
 // Accuracy: a hit or an object lands in the map pixel containing it (±½ pixel, 0.5 m at the
 // default 1024 px over ~1 km); a grid terrain shows its nearest sample; poles and trees smaller
 // than a pixel are drawn at the minimum sizes above. Valid for any region of positive extent.
@@ -79,6 +80,14 @@ inline constexpr Rgb8 kQuicklookFlatTerrain{46, 58, 46};
 // "frame_000010.png"
 [[nodiscard]] std::string quicklook_frame_file_name(std::int64_t frame);
 
+// The state a Quicklook builds up from the frames: the map mask (a byte per map pixel, row-major)
+// and the last trajectory point, in map pixels.
+struct QuicklookCheckpoint {
+  std::vector<std::uint8_t> map_mask;
+  std::optional<Eigen::Vector2d> last_trajectory_px;
+  friend bool operator==(const QuicklookCheckpoint&, const QuicklookCheckpoint&) = default;
+};
+
 class Quicklook {
  public:
   // Creates `directory` if missing and rasterises the scene's terrain and objects into the map of
@@ -96,6 +105,11 @@ class Quicklook {
   void add_trajectory_point(const Eigen::Vector3d& enu_m);
   // Writes map.png. Call once; nothing may be added afterwards.
   void finish();
+
+  [[nodiscard]] QuicklookCheckpoint checkpoint() const;
+  // Continues from the state of a Quicklook built with the same scene, scan, region and options.
+  // Throws owsim::Error if the mask's size is not this map's.
+  void restore(QuicklookCheckpoint from);
 
   [[nodiscard]] int map_width_px() const { return base_.width(); }
   [[nodiscard]] int map_height_px() const { return base_.height(); }

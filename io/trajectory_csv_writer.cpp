@@ -12,12 +12,32 @@ constexpr std::size_t kRowBytesMax = 512;  // a row of finite values
 
 }  // namespace
 
+TrajectoryCsvWriter::TrajectoryCsvWriter(AtomicOutputFile file, const LocalFrame& frame,
+                                         std::uint64_t rows_written)
+    : file_(std::move(file)), frame_(frame), rows_written_(rows_written) {
+  buffer_.reserve(kFlushBytes + kRowBytesMax);
+}
+
 TrajectoryCsvWriter::TrajectoryCsvWriter(std::filesystem::path final_path, const LocalFrame& frame,
                                          AtomicOutputOptions options)
-    : file_(std::move(final_path), options), frame_(frame) {
-  buffer_.reserve(kFlushBytes + kRowBytesMax);
+    : TrajectoryCsvWriter(AtomicOutputFile(std::move(final_path), options), frame, 0) {
   buffer_ += kTrajectoryCsvHeader;
   buffer_ += '\n';
+}
+
+TrajectoryCsvWriter TrajectoryCsvWriter::resume(std::filesystem::path final_path,
+                                                const LocalFrame& frame,
+                                                const WriterCheckpoint& from,
+                                                AtomicOutputOptions options) {
+  return TrajectoryCsvWriter(
+      AtomicOutputFile::resume(std::move(final_path), from.file_bytes, options), frame,
+      from.records);
+}
+
+WriterCheckpoint TrajectoryCsvWriter::checkpoint() {
+  flush_buffer();
+  file_.flush();
+  return {file_.bytes_written(), rows_written_};
 }
 
 void TrajectoryCsvWriter::write(const Pose& pose) {

@@ -8,8 +8,8 @@
 // exact to nanometres); roll, pitch, heading the pose's attitude against the local-level axes at
 // the position, as held (not wrapped). Fixed decimals: time 9 (1 ns), lat/lon 9 (≤ 0.11 mm),
 // h and e/n/u 4 (0.1 mm), angles 9 (the attitude round-trips to 1e-9°). Rows go through a buffer
-// into an AtomicOutputFile: nothing appears under the final name before finish(). Errors throw
-// owsim::Error naming the path.
+// into an AtomicOutputFile: nothing appears under the final name before finish(); checkpoint() and
+// resume() let an interrupted run continue the file. Errors throw owsim::Error naming the path.
 #include <cstdint>
 #include <filesystem>
 #include <span>
@@ -18,6 +18,7 @@
 
 #include "geometry/geodetic_frame.hpp"
 #include "io/atomic_output_file.hpp"
+#include "io/writer_checkpoint.hpp"
 #include "sensor/mounting.hpp"
 
 namespace owsim {
@@ -30,14 +31,23 @@ class TrajectoryCsvWriter {
   // `frame` is the scenario's local frame (copied). Writes the header line.
   TrajectoryCsvWriter(std::filesystem::path final_path, const LocalFrame& frame,
                       AtomicOutputOptions options = {});
+  // Continues the temporary file an interrupted writer left at `from` (bytes after it are cut
+  // off). Throws owsim::Error naming the path if the temporary is missing or shorter.
+  [[nodiscard]] static TrajectoryCsvWriter resume(std::filesystem::path final_path,
+                                                  const LocalFrame& frame,
+                                                  const WriterCheckpoint& from,
+                                                  AtomicOutputOptions options = {});
 
   void write(const Pose& pose);
   void write(std::span<const Pose> poses);
   // Flushes and renames the file to its final name; nothing may be written afterwards.
   void finish();
   [[nodiscard]] std::uint64_t rows_written() const { return rows_written_; }
+  // Hands every row written so far to the kernel; where to resume from.
+  [[nodiscard]] WriterCheckpoint checkpoint();
 
  private:
+  TrajectoryCsvWriter(AtomicOutputFile file, const LocalFrame& frame, std::uint64_t rows_written);
   void flush_buffer();
 
   AtomicOutputFile file_;

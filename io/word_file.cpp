@@ -35,6 +35,27 @@ WordFileWriter<Word>::WordFileWriter(std::filesystem::path final_path, AtomicOut
     : file_(std::move(final_path), options), buffer_(whole_words_bytes<Word>(buffer_bytes)) {}
 
 template <typename Word>
+WordFileWriter<Word>::WordFileWriter(AtomicOutputFile file, std::size_t buffer_bytes,
+                                     std::uint64_t words_written)
+    : file_(std::move(file)),
+      buffer_(whole_words_bytes<Word>(buffer_bytes)),
+      words_written_(words_written) {}
+
+template <typename Word>
+WordFileWriter<Word> WordFileWriter<Word>::resume(std::filesystem::path final_path,
+                                                  const WriterCheckpoint& from,
+                                                  AtomicOutputOptions options,
+                                                  std::size_t buffer_bytes) {
+  if (from.file_bytes != from.records * sizeof(Word)) {
+    throw input_error(final_path.string(), "cannot resume: the checkpoint's " +
+                                               std::to_string(from.file_bytes) + " bytes are not " +
+                                               std::to_string(from.records) + " words");
+  }
+  return WordFileWriter(AtomicOutputFile::resume(std::move(final_path), from.file_bytes, options),
+                        buffer_bytes, from.records);
+}
+
+template <typename Word>
 void WordFileWriter<Word>::write(Word word) {
   write(std::span<const Word>(&word, 1));
 }
@@ -53,6 +74,13 @@ template <typename Word>
 void WordFileWriter<Word>::flush_buffer() {
   file_.write(buffer_.data(), buffered_bytes_);
   buffered_bytes_ = 0;
+}
+
+template <typename Word>
+WriterCheckpoint WordFileWriter<Word>::checkpoint() {
+  flush_buffer();
+  file_.flush();
+  return {file_.bytes_written(), words_written_};
 }
 
 template <typename Word>

@@ -5,7 +5,8 @@
 //
 // Both sides go through a fixed buffer (1 MiB by default), so memory stays flat however long the
 // flight. The writer appends to an AtomicOutputFile: nothing appears under the final name until
-// commit(). The reader never loads the file whole and reports a size that is not a whole number
+// commit(); checkpoint() and resume() let an interrupted run continue a file (`owsim run
+// --resume`). The reader never loads the file whole and reports a size that is not a whole number
 // of words (trailing_bytes) instead of silently dropping the tail. Errors throw owsim::Error
 // naming the path.
 #include <cstddef>
@@ -16,6 +17,7 @@
 #include <vector>
 
 #include "io/atomic_output_file.hpp"
+#include "io/writer_checkpoint.hpp"
 
 namespace owsim {
 
@@ -28,8 +30,18 @@ class WordFileWriter {
   explicit WordFileWriter(std::filesystem::path final_path, AtomicOutputOptions options = {},
                           std::size_t buffer_bytes = kWordFileBufferBytes);
 
+  // Continues the temporary file an interrupted writer left at `from` (bytes after it are cut
+  // off). Throws owsim::Error naming the path if the temporary is missing or shorter, or if
+  // `from` is not a whole number of words.
+  [[nodiscard]] static WordFileWriter resume(std::filesystem::path final_path,
+                                             const WriterCheckpoint& from,
+                                             AtomicOutputOptions options = {},
+                                             std::size_t buffer_bytes = kWordFileBufferBytes);
+
   void write(Word word);
   void write(std::span<const Word> words);  // e.g. a whole frame at once
+  // Hands every word written so far to the kernel; where to resume from.
+  [[nodiscard]] WriterCheckpoint checkpoint();
   // Flushes the buffer and renames the file to its final name.
   void commit();
 
@@ -37,6 +49,7 @@ class WordFileWriter {
   [[nodiscard]] const std::filesystem::path& path() const { return file_.final_path(); }
 
  private:
+  WordFileWriter(AtomicOutputFile file, std::size_t buffer_bytes, std::uint64_t words_written);
   void flush_buffer();
 
   AtomicOutputFile file_;
