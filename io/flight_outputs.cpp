@@ -1,6 +1,8 @@
 #include "io/flight_outputs.hpp"
 
-#include <sstream>
+#include <string>
+#include <string_view>
+#include <system_error>
 #include <vector>
 
 #include "geometry/error.hpp"
@@ -9,8 +11,9 @@
 #include "io/frame_words.hpp"
 #include "io/las_writer.hpp"
 #include "io/ply_writer.hpp"
-#include "io/quicklook.hpp"
 #include "io/points_csv_writer.hpp"
+#include "io/quicklook.hpp"
+#include "io/run_checkpoint.hpp"
 #include "io/trajectory_csv_writer.hpp"
 #include "io/word_file.hpp"
 
@@ -20,14 +23,30 @@ namespace owsim {
 // by 32-bit words.
 class WordSink {
  public:
-  WordSink(const std::filesystem::path& directory, const ScanParams& scan) : scan_(scan) {
+  WordSink(const std::filesystem::path& directory, const ScanParams& scan,
+           const WriterCheckpoint* resume_from)
+      : scan_(scan) {
+    const std::filesystem::path path = directory / file_name(scan);
     if (scan.model == SensorModel::milows) {
-      milows_.emplace(directory / "flight.d64");
+      if (resume_from != nullptr) {
+        milows_.emplace(WordFileWriter<std::uint64_t>::resume(path, *resume_from));
+      } else {
+        milows_.emplace(path);
+      }
       milows_words_.resize(static_cast<std::size_t>(scan.pulses_per_frame()));
     } else {
-      hellas_.emplace(directory / "flight.hellas");
+      if (resume_from != nullptr) {
+        hellas_.emplace(WordFileWriter<std::uint32_t>::resume(path, *resume_from));
+        header_written_ = resume_from->records > 0;
+      } else {
+        hellas_.emplace(path);
+      }
       hellas_words_.resize(static_cast<std::size_t>(scan.pulses_per_frame()));
     }
+  }
+
+  [[nodiscard]] static std::string_view file_name(const ScanParams& scan) {
+    return scan.model == SensorModel::milows ? "flight.d64" : "flight.hellas";
   }
 
   void add_frame(const FrameView& frame) {
@@ -42,6 +61,10 @@ class WordSink {
     }
     pack_hellas_frame(scan_, frame.sweep, frame.pulses, frame.returns, hellas_words_);
     hellas_->write(std::span<const std::uint32_t>(hellas_words_));
+  }
+
+  [[nodiscard]] WriterCheckpoint checkpoint() {
+    return milows_ ? milows_->checkpoint() : hellas_->checkpoint();
   }
 
   void commit() {
@@ -80,8 +103,9 @@ std::set<OutputKind> parse_output_list(std::string_view list) {
     } else if (item == "quicklook") {
       kinds.insert(OutputKind::quicklook);
     } else {
-      throw input_error("--outputs", "unknown output '" + std::string(item) +
-                                         "' (expected d64, points, trajectory, summary, quicklook)");
+      throw input_error("--outputs",
+                        "unknown output '" + std::string(item) +
+                            "' (expected d64, points, trajectory, summary, quicklook)");
     }
     begin = comma + 1;
   }
@@ -89,60 +113,176 @@ std::set<OutputKind> parse_output_list(std::string_view list) {
 }
 
 FlightOutputs::FlightOutputs(const FlightOutputOptions& options, const Scene& scene,
-                             const ScanParams& scan, const LocalFrame& local_frame)
-    : options_(options), scan_(scan), local_frame_(&local_frame), summary_(scene) {
+                             const ScanParams& scan, const LocalFrame& local_frame,
+                             const RunCheckpoint* resume_from)
+    : options_(options),
+      scan_(scan),
+      local_frame_(&local_frame),
+      summary_(scene),
+      checkpoint_path_(run_checkpoint_path(options_.directory)),
+      last_checkpoint_(Clock::now()) {
   std::error_code error;
   std::filesystem::create_directories(options_.directory, error);
   if (error) {
-    throw input_error(options_.directory.string(), "cannot create the output folder: " +
-                                                       error.message());
+    throw input_error(options_.directory.string(),
+                      "cannot create the output folder: " + error.message());
   }
-  if (wants(OutputKind::d64)) words_ = std::make_unique<WordSink>(options_.directory, scan_);
+  // A checkpoint of another run must not outlive the temporaries this run is about to truncate.
+  if (checkpointing() && resume_from == nullptr &&
+      (!std::filesystem::remove(checkpoint_path_, error) && error)) {
+    throw input_error(checkpoint_path_.string(),
+                      "cannot remove an earlier run's checkpoint: " + error.message());
+  }
+  open_outputs(scene, resume_from);
+}
+
+void FlightOutputs::open_outputs(const Scene& scene, const RunCheckpoint* from) {
+  const std::filesystem::path& directory = options_.directory;
+  // The state `from` holds for an output, or nullptr for a fresh file.
+  const auto state = [&]<typename State>(std::optional<State> RunCheckpoint::*member,
+                                         std::string_view name) -> const State* {
+    if (from == nullptr) return nullptr;
+    if (!(from->*member)) {
+      throw input_error(checkpoint_path_.string(),
+                        "holds no state for " + std::string(name) + "; run without --resume");
+    }
+    return &*(from->*member);
+  };
+  // Resuming a checkpoint written by finish(), a file whose temporary is gone was committed.
+  const auto committed = [&](const std::filesystem::path& final_path) {
+    return from != nullptr && from->finishing &&
+           !std::filesystem::exists(AtomicOutputFile::partial_path_for(final_path)) &&
+           std::filesystem::exists(final_path);
+  };
+  if (from != nullptr) {
+    if (from->summary.counts.frames != static_cast<std::uint64_t>(from->frames_done)) {
+      throw input_error(checkpoint_path_.string(),
+                        "damaged checkpoint: " + std::to_string(from->frames_done) +
+                            " frames done, the summary holds " +
+                            std::to_string(from->summary.counts.frames));
+    }
+    try {
+      summary_.restore(from->summary);
+    } catch (const Error& e) {
+      throw input_error(checkpoint_path_.string(), e.what());
+    }
+    frames_done_ = from->frames_done;
+    resumed_while_finishing_ = from->finishing;
+  }
+
+  if (wants(OutputKind::d64)) {
+    const auto* resume = state(&RunCheckpoint::words, WordSink::file_name(scan_));
+    if (!committed(directory / WordSink::file_name(scan_))) {
+      words_ = std::make_unique<WordSink>(directory, scan_, resume);
+    }
+  }
   if (wants(OutputKind::points)) {
     std::vector<std::string> ids;
     for (const Conductor& conductor : scene.conductors) ids.push_back(conductor.id);
     for (const Cylinder& cylinder : scene.cylinders) ids.push_back(cylinder.id);
     ids.emplace_back("terrain");  // the ground's object index comes last
-    point_sinks_.push_back(
-        std::make_unique<PointsCsvWriter>(options_.directory / "points.csv", std::move(ids)));
+    const std::filesystem::path csv = directory / "points.csv";
+    if (const auto* resume = state(&RunCheckpoint::points_csv, "points.csv"); !committed(csv)) {
+      points_csv_ = std::make_unique<PointsCsvWriter>(
+          resume ? PointsCsvWriter::resume(csv, std::move(ids), *resume)
+                 : PointsCsvWriter(csv, std::move(ids)));
+    }
     LasWriterOptions las;
-    las.origin = local_frame.origin();
-    point_sinks_.push_back(std::make_unique<LasWriter>(options_.directory / "points.las", las));
-    point_sinks_.push_back(std::make_unique<PlyWriter>(options_.directory / "points.ply"));
+    las.origin = local_frame_->origin();
+    const std::filesystem::path las_path = directory / "points.las";
+    if (const auto* resume = state(&RunCheckpoint::points_las, "points.las");
+        !committed(las_path)) {
+      points_las_ = std::make_unique<LasWriter>(resume ? LasWriter::resume(las_path, las, *resume)
+                                                       : LasWriter(las_path, las));
+    }
+    const std::filesystem::path ply = directory / "points.ply";
+    if (const auto* resume = state(&RunCheckpoint::points_ply, "points.ply"); !committed(ply)) {
+      points_ply_ =
+          std::make_unique<PlyWriter>(resume ? PlyWriter::resume(ply, *resume) : PlyWriter(ply));
+    }
   }
   if (wants(OutputKind::trajectory)) {
-    trajectory_ =
-        std::make_unique<TrajectoryCsvWriter>(options_.directory / "trajectory.csv", local_frame);
+    const std::filesystem::path path = directory / "trajectory.csv";
+    if (const auto* resume = state(&RunCheckpoint::trajectory, "trajectory.csv");
+        !committed(path)) {
+      trajectory_ = std::make_unique<TrajectoryCsvWriter>(
+          resume ? TrajectoryCsvWriter::resume(path, *local_frame_, *resume)
+                 : TrajectoryCsvWriter(path, *local_frame_));
+    }
   }
   if (wants(OutputKind::quicklook)) {
     QuicklookOptions quicklook;
     quicklook.every_nth_frame = options_.quicklook_every_nth_frame;
     const Eigen::AlignedBox2d region =
         options_.map_region.isEmpty() ? quicklook_map_region(scene, {}) : options_.map_region;
-    quicklook_ = std::make_unique<Quicklook>(options_.directory / "quicklook", scene, scan_, region,
-                                             quicklook);
+    quicklook_ =
+        std::make_unique<Quicklook>(directory / "quicklook", scene, scan_, region, quicklook);
+    if (const auto* resume = state(&RunCheckpoint::quicklook, "quicklook/")) {
+      try {
+        quicklook_->restore(*resume);
+      } catch (const Error& e) {
+        throw input_error(checkpoint_path_.string(), e.what());
+      }
+    }
   }
 }
 
-FlightOutputs::~FlightOutputs() = default;
+FlightOutputs::~FlightOutputs() {
+  if (checkpointing() && !finished_) {
+    std::error_code ignored;
+    std::filesystem::remove(checkpoint_path_, ignored);
+  }
+}
 
 void FlightOutputs::add_frame(const FrameView& frame, const Pose& frame_start) {
+  if (frame.frame != frames_done_) {
+    throw Error("outputs: frame " + std::to_string(frame.frame) + " given, frame " +
+                std::to_string(frames_done_) + " expected");
+  }
   summary_.add_frame(frame.frame, frame.pulses, frame.returns);
   if (words_) words_->add_frame(frame);
-  if (!point_sinks_.empty()) {
+  if (points_csv_ || points_las_ || points_ply_) {
     frame_points(frame, *local_frame_, points_);
-    for (auto& sink : point_sinks_) sink->write(points_);
+    if (points_csv_) points_csv_->write(points_);
+    if (points_las_) points_las_->write(points_);
+    if (points_ply_) points_ply_->write(points_);
   }
   if (trajectory_) trajectory_->write(frame_start);
   if (quicklook_) {
     quicklook_->add_trajectory_point(frame_start.position_enu_m);
     quicklook_->add_frame(frame);
   }
+  ++frames_done_;
+  resumed_while_finishing_ = false;
+  if (checkpointing() && std::chrono::duration<double>(Clock::now() - last_checkpoint_).count() >=
+                             options_.checkpoint_interval_s) {
+    write_checkpoint(false);
+  }
+}
+
+void FlightOutputs::write_checkpoint(bool finishing) {
+  RunCheckpoint checkpoint;
+  checkpoint.run = options_.checkpoint_run;
+  checkpoint.frames_done = frames_done_;
+  checkpoint.finishing = finishing;
+  checkpoint.summary = summary_.checkpoint();
+  if (words_) checkpoint.words = words_->checkpoint();
+  if (points_csv_) checkpoint.points_csv = points_csv_->checkpoint();
+  if (points_las_) checkpoint.points_las = points_las_->checkpoint();
+  if (points_ply_) checkpoint.points_ply = points_ply_->checkpoint();
+  if (trajectory_) checkpoint.trajectory = trajectory_->checkpoint();
+  if (quicklook_) checkpoint.quicklook = quicklook_->checkpoint();
+  write_run_checkpoint(checkpoint_path_, checkpoint);
+  last_checkpoint_ = Clock::now();
 }
 
 void FlightOutputs::finish(const nlohmann::json& run_facts) {
+  // From here files appear under their final names; a resume must know they may have.
+  if (checkpointing() && !resumed_while_finishing_) write_checkpoint(true);
   if (words_) words_->commit();
-  for (auto& sink : point_sinks_) sink->finish();
+  if (points_csv_) points_csv_->finish();
+  if (points_las_) points_las_->finish();
+  if (points_ply_) points_ply_->finish();
   if (trajectory_) trajectory_->finish();
   if (quicklook_) quicklook_->finish();
   if (wants(OutputKind::summary)) {
@@ -152,6 +292,14 @@ void FlightOutputs::finish(const nlohmann::json& run_facts) {
     AtomicOutputFile file(options_.directory / "summary.json");
     file.write(summary.dump(2) + "\n");
     file.commit();
+  }
+  finished_ = true;
+  if (checkpointing()) {
+    // Best effort: a checkpoint left now describes committed files, and resuming it only rewrites
+    // summary.json and the map. Its temporary is there if an earlier process died writing it.
+    std::error_code ignored;
+    std::filesystem::remove(checkpoint_path_, ignored);
+    std::filesystem::remove(AtomicOutputFile::partial_path_for(checkpoint_path_), ignored);
   }
 }
 

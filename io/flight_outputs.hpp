@@ -4,11 +4,17 @@
 // points.ply, trajectory.csv, summary.json and quicklook/. Each file is written under a temporary
 // name and appears under its final name only when finish() completes it, so an interrupted run
 // leaves nothing half-written.
-#include <nlohmann/json.hpp>
-
+//
+// Given a run fingerprint, FlightOutputs also keeps the folder's checkpoint (io/run_checkpoint.hpp)
+// between frames, at most every checkpoint_interval_s of wall time: a killed run (SIGKILL, no
+// destructor) leaves its temporaries and the checkpoint, and FlightOutputs built from that
+// checkpoint cuts the temporaries back to it and continues them, so the finished files are byte
+// for byte those of an uninterrupted run, wherever the checkpoints fell.
+#include <chrono>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
 #include <string>
@@ -36,41 +42,69 @@ struct FlightOutputOptions {
   std::set<OutputKind> outputs = all_outputs();
   int quicklook_every_nth_frame = 10;
   Eigen::AlignedBox2d map_region;  // the quick-look map's extent (east, north)
+  // The run's fingerprint (RunCheckpoint::run, an object): checkpoints are kept. Null: none.
+  nlohmann::json checkpoint_run;
+  double checkpoint_interval_s = 0.5;
 };
 
 class WordSink;
+class PointsCsvWriter;
+class LasWriter;
+class PlyWriter;
 class TrajectoryCsvWriter;
 class Quicklook;
+struct RunCheckpoint;
 
 class FlightOutputs {
  public:
-  // Creates the directory and opens every requested output (as temporaries).
+  // Creates the directory and opens every requested output (as temporaries); with checkpoints on,
+  // first removes a checkpoint left in the folder. With `resume_from` (the folder's checkpoint,
+  // of the same run: the caller has compared its fingerprint), continues the outputs from it
+  // instead: frames_done() is then its frame count. Throws owsim::Error if a temporary it names is
+  // missing or shorter, or its state does not fit the outputs.
   FlightOutputs(const FlightOutputOptions& options, const Scene& scene, const ScanParams& scan,
-                const LocalFrame& local_frame);
+                const LocalFrame& local_frame, const RunCheckpoint* resume_from = nullptr);
+  // Without finish() (an exception): the temporaries go, and the checkpoint with them.
   ~FlightOutputs();
   FlightOutputs(const FlightOutputs&) = delete;
   FlightOutputs& operator=(const FlightOutputs&) = delete;
 
-  // One frame, in order; `frame_start` is the aircraft's pose at the frame's first pulse.
+  // One frame, in order from frames_done(); `frame_start` is the aircraft's pose at the frame's
+  // first pulse. Writes a checkpoint afterwards if one is due.
   void add_frame(const FrameView& frame, const Pose& frame_start);
 
-  // Completes every file and writes summary.json with `run_facts` merged into the totals.
+  // Completes every file and writes summary.json with `run_facts` merged into the totals; then
+  // removes the checkpoint.
   void finish(const nlohmann::json& run_facts);
 
   [[nodiscard]] const FlightSummary& summary() const { return summary_; }
+  // The frames in the outputs: the next frame add_frame() takes.
+  [[nodiscard]] std::int64_t frames_done() const { return frames_done_; }
 
  private:
+  using Clock = std::chrono::steady_clock;
+
   [[nodiscard]] bool wants(OutputKind kind) const { return options_.outputs.contains(kind); }
+  [[nodiscard]] bool checkpointing() const { return !options_.checkpoint_run.is_null(); }
+  void open_outputs(const Scene& scene, const RunCheckpoint* resume_from);
+  void write_checkpoint(bool finishing);
 
   FlightOutputOptions options_;
   ScanParams scan_;
   const LocalFrame* local_frame_;
   FlightSummary summary_;
   std::unique_ptr<WordSink> words_;
-  std::vector<std::unique_ptr<PointSink>> point_sinks_;
+  std::unique_ptr<PointsCsvWriter> points_csv_;
+  std::unique_ptr<LasWriter> points_las_;
+  std::unique_ptr<PlyWriter> points_ply_;
   std::unique_ptr<TrajectoryCsvWriter> trajectory_;
   std::unique_ptr<Quicklook> quicklook_;
   std::vector<PointRecord> points_;  // reused per frame
+  std::int64_t frames_done_ = 0;
+  bool resumed_while_finishing_ = false;  // the checkpoint already describes the finished frames
+  bool finished_ = false;
+  std::filesystem::path checkpoint_path_;
+  Clock::time_point last_checkpoint_;
 };
 
 }  // namespace owsim
