@@ -1,6 +1,8 @@
 // owsim run SCENARIO.yaml — simulate a whole flight (INTERFACE.md).
 #include <fmt/core.h>
 
+#include <string>
+
 #include "cli/commands.hpp"
 #include "cli/flight_run.hpp"
 #include "cli/option_checks.hpp"
@@ -27,6 +29,8 @@ void add_run_command(CLI::App& app, CommandResult& /*result*/) {
   command->add_option("--outputs", *outputs,
                       "comma list of d64, points, trajectory, summary, quicklook (default: all)");
   command->add_flag("--no-noise", options->no_noise, "range noise off (σ = 0)");
+  command->add_flag("--resume", options->resume,
+                    "continue an interrupted run (same options) from its last complete frame");
   command->add_flag("--quiet", *quiet, "no progress line");
   command->callback([options, outputs, quiet] {
     if (!outputs->empty()) options->outputs = parse_output_list(*outputs);
@@ -34,10 +38,13 @@ void add_run_command(CLI::App& app, CommandResult& /*result*/) {
     const RunReport report = run_flight_scenario(*options);
     if (!*quiet) {
       fmt::print(stderr,
-                 "{} frames, {} pulses in {:.2f} s ({:.0f} pulses/s, {:.2f}× real time, {} "
+                 "{} frames{}, {} pulses in {:.2f} s ({:.0f} pulses/s, {:.2f}× real time, {} "
                  "threads) → {}\n",
-                 report.frames, report.pulses, report.wall_s, report.pulses_per_s,
-                 report.realtime_factor, report.threads, report.directory.string());
+                 report.frames,
+                 report.first_frame > 0 ? fmt::format(" (resumed at {})", report.first_frame)
+                                        : std::string(),
+                 report.pulses, report.wall_s, report.pulses_per_s, report.realtime_factor,
+                 report.threads, report.directory.string());
     }
   });
 }

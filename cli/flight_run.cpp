@@ -1,18 +1,22 @@
 #include "cli/flight_run.hpp"
 
+#include <fmt/core.h>
 #include <tbb/global_control.h>
 #include <tbb/info.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <cmath>
-#include <cstdio>
+#include <optional>
+#include <string>
+#include <utility>
 
+#include "cli/progress_line.hpp"
 #include "engine/embree_device.hpp"
 #include "engine/embree_scene.hpp"
 #include "engine/flight_pipeline.hpp"
 #include "engine/frame_simulator.hpp"
 #include "geometry/error.hpp"
+#include "io/run_checkpoint.hpp"
 #include "io/scenario_loader.hpp"
 #include "io/scene_builder.hpp"
 #include "io/trajectory_loader.hpp"
@@ -79,37 +83,6 @@ Eigen::AlignedBox2d scene_extent(const Scene& scene) {
   return box;
 }
 
-class ProgressLine {
- public:
-  ProgressLine(bool enabled, std::int64_t frames, int pulses_per_frame)
-      : enabled_(enabled && isatty(STDERR_FILENO) != 0),
-        frames_(frames),
-        pulses_per_frame_(pulses_per_frame),
-        start_(Clock::now()),
-        last_(start_) {}
-
-  void frame_done(std::int64_t done) {
-    if (!enabled_) return;
-    const auto now = Clock::now();
-    if (done < frames_ && now - last_ < std::chrono::milliseconds(250)) return;
-    last_ = now;
-    const double elapsed = std::chrono::duration<double>(now - start_).count();
-    const double rate = elapsed > 0 ? static_cast<double>(done * pulses_per_frame_) / elapsed : 0;
-    const double eta =
-        done > 0 ? elapsed * static_cast<double>(frames_ - done) / static_cast<double>(done) : 0;
-    std::fprintf(stderr, "\rframe %lld/%lld  %.2f Mpulses/s  ETA %.0f s   ",
-                 static_cast<long long>(done), static_cast<long long>(frames_), rate / 1e6, eta);
-    if (done == frames_) std::fprintf(stderr, "\n");
-  }
-
- private:
-  bool enabled_;
-  std::int64_t frames_;
-  int pulses_per_frame_;
-  Clock::time_point start_;
-  Clock::time_point last_;
-};
-
 // The scenario file with --seed and --no-noise applied.
 Scenario scenario_of_run(const RunOptions& options) {
   Scenario scenario = load_scenario(options.scenario);
@@ -124,6 +97,78 @@ Eigen::AlignedBox2d reach_of(const Eigen::AlignedBox2d& flown, double max_range_
   reach.min().array() -= max_range_m;
   reach.max().array() += max_range_m;
   return reach;
+}
+
+// "d64,points,…": the outputs in a fixed order.
+std::string output_list(const std::set<OutputKind>& outputs) {
+  static constexpr std::pair<OutputKind, const char*> kNames[] = {
+      {OutputKind::d64, "d64"},
+      {OutputKind::points, "points"},
+      {OutputKind::trajectory, "trajectory"},
+      {OutputKind::summary, "summary"},
+      {OutputKind::quicklook, "quicklook"}};
+  std::string list;
+  for (const auto& [kind, name] : kNames) {
+    if (!outputs.contains(kind)) continue;
+    if (!list.empty()) list += ',';
+    list += name;
+  }
+  return list;
+}
+
+// What makes a run's output bytes (io/run_checkpoint.hpp `run`): owsim's version, the contents of
+// the scenario file and of the files it reads, and the options that change bytes. Not the thread
+// count, which changes none.
+nlohmann::json run_fingerprint(const FlightSetup& setup, const RunOptions& options) {
+  ContentHash scenario_file;
+  scenario_file.add_file(options.scenario);
+  nlohmann::json run = {
+      {"owsim_version", version_string}, {"scenario_file", scenario_file.hex()},
+      {"seed", setup.scenario.seed},     {"no_noise", options.no_noise},
+      {"frames", setup.frames},          {"outputs", output_list(options.outputs)}};
+  if (setup.scenario.trajectory.source == TrajectorySpec::Source::file) {
+    ContentHash trajectory_file;
+    trajectory_file.add_file(setup.scenario.trajectory.file);
+    run["trajectory_file"] = trajectory_file.hex();
+  }
+  if (setup.scenario.scene.terrain.kind == TerrainKind::grid) {
+    const HeightGrid& grid = setup.scenario.scene.terrain.grid;
+    ContentHash terrain;
+    const double shape[] = {static_cast<double>(grid.ncols),
+                            static_cast<double>(grid.nrows),
+                            grid.x_west_m,
+                            grid.y_south_m,
+                            grid.cellsize_m,
+                            grid.nodata.value_or(0.0)};
+    terrain.add(shape, sizeof shape);
+    terrain.add(grid.heights.data(), grid.heights.size() * sizeof(double));
+    run["terrain_grid"] = terrain.hex();
+  }
+  return run;
+}
+
+// The checkpoint --resume continues from, compared with this run; std::nullopt (and a note) if
+// the folder has none.
+std::optional<RunCheckpoint> checkpoint_to_resume(const FlightOutputOptions& output_options,
+                                                  std::int64_t frames, bool verbose) {
+  const std::filesystem::path path = run_checkpoint_path(output_options.directory);
+  std::optional<RunCheckpoint> checkpoint = read_run_checkpoint(path);
+  if (!checkpoint) {
+    fmt::print(stderr, "owsim run --resume: no checkpoint {}: starting from frame 0\n",
+               path.string());
+    return std::nullopt;
+  }
+  require_same_run(path, checkpoint->run, output_options.checkpoint_run);
+  if (checkpoint->frames_done > frames) {
+    throw input_error(path.string(),
+                      "damaged checkpoint: " + std::to_string(checkpoint->frames_done) +
+                          " frames done of " + std::to_string(frames));
+  }
+  if (verbose) {
+    fmt::print(stderr, "resuming {} at frame {} of {}\n", output_options.directory.string(),
+               checkpoint->frames_done, frames);
+  }
+  return checkpoint;
 }
 
 }  // namespace
@@ -173,22 +218,34 @@ RunReport run_flight_scenario(const RunOptions& options) {
   const FlightSetup setup(options);
   const Scenario& scenario = setup.scenario;
   const std::int64_t frames = setup.frames;
-  const FlightOutputOptions output_options = flight_output_options(setup, options);
-  FlightOutputs outputs(output_options, setup.scene, scenario.scan, setup.local_frame);
+  FlightOutputOptions output_options = flight_output_options(setup, options);
+  output_options.checkpoint_run = run_fingerprint(setup, options);
+  std::optional<RunCheckpoint> checkpoint;
+  if (options.resume) checkpoint = checkpoint_to_resume(output_options, frames, options.progress);
+  FlightOutputs outputs(output_options, setup.scene, scenario.scan, setup.local_frame,
+                        checkpoint ? &*checkpoint : nullptr);
+  const std::int64_t first = outputs.frames_done();
 
-  ProgressLine progress(options.progress, frames, scenario.scan.pulses_per_frame());
+  const auto pulses_per_frame = static_cast<std::uint64_t>(scenario.scan.pulses_per_frame());
+  ProgressLine progress(options.progress, static_cast<std::uint64_t>(frames),
+                        static_cast<std::uint64_t>(first));
   const auto start = Clock::now();
-  simulate_frames(setup.simulator, setup, FlightRange{0, frames}, threads, outputs,
-                  [&](std::int64_t done) { progress.frame_done(done); });
+  simulate_frames(setup.simulator, setup, FlightRange{first, frames - first}, threads, outputs,
+                  [&](std::int64_t done) {
+                    progress.frame_done(static_cast<std::uint64_t>(first + done),
+                                        static_cast<std::uint64_t>(done) * pulses_per_frame);
+                  });
   const double wall_s = std::chrono::duration<double>(Clock::now() - start).count();
 
   RunReport report;
   report.directory = output_options.directory;
   report.frames = frames;
-  report.pulses = static_cast<std::uint64_t>(frames) *
-                  static_cast<std::uint64_t>(scenario.scan.pulses_per_frame());
+  report.first_frame = first;
+  report.pulses = static_cast<std::uint64_t>(frames) * pulses_per_frame;
   report.wall_s = wall_s;
-  report.pulses_per_s = wall_s > 0 ? static_cast<double>(report.pulses) / wall_s : 0.0;
+  const auto simulated =
+      static_cast<double>(static_cast<std::uint64_t>(frames - first) * pulses_per_frame);
+  report.pulses_per_s = wall_s > 0 ? simulated / wall_s : 0.0;
   report.realtime_factor = report.pulses_per_s / scenario.scan.prf_hz;
   report.threads = threads;
 

@@ -30,16 +30,18 @@ struct RunOptions {
   std::optional<std::uint64_t> seed;
   std::set<OutputKind> outputs = all_outputs();
   bool no_noise = false;
+  bool resume = false;    // continue from the output folder's checkpoint (io/run_checkpoint.hpp)
   bool progress = false;  // a progress line on stderr
   TraceApi trace_api = TraceApi::stream;
 };
 
 struct RunReport {
   std::filesystem::path directory;
-  std::int64_t frames = 0;
+  std::int64_t frames = 0;  // of the whole flight
   std::uint64_t pulses = 0;
+  std::int64_t first_frame = 0;  // where this run began: > 0 when it resumed an interrupted one
   double wall_s = 0.0;
-  double pulses_per_s = 0.0;
+  double pulses_per_s = 0.0;  // of the frames this run simulated
   double realtime_factor = 0.0;
   int threads = 0;
 };
@@ -77,6 +79,10 @@ void simulate_frames(const FrameSimulator& simulator, const FlightSetup& setup,
                      const FlightRange& range, int threads, FlightOutputs& outputs,
                      const std::function<void(std::int64_t)>& frame_done = {});
 
+// A whole `owsim run`. Keeps a checkpoint in the output folder while it runs; with
+// options.resume, continues from the folder's checkpoint (throws owsim::Error naming it if it was
+// written by a run with other output-changing options or inputs), or starts from frame 0 with a
+// note on stderr if there is none.
 RunReport run_flight_scenario(const RunOptions& options);
 
 }  // namespace owsim::cli
