@@ -1,5 +1,6 @@
 #include "geometry/keyed_random.hpp"
 
+#include <bit>
 #include <cmath>
 #include <numbers>
 
@@ -11,16 +12,117 @@ constexpr std::uint32_t kMultiplier1 = 0xCD9E8D57u;
 constexpr std::uint32_t kWeyl0 = 0x9E3779B9u;  // golden ratio
 constexpr std::uint32_t kWeyl1 = 0xBB67AE85u;  // sqrt(3) - 1
 
+constexpr std::uint32_t kExtraBlockFlag = 0x80u;  // bit 7 of the counter's purpose byte
+static_assert(static_cast<std::uint32_t>(RandomPurpose::forest_layout) < kExtraBlockFlag);
+constexpr std::uint64_t kExtraKeyStep = 0x9E3779B97F4A7C15u;  // 2⁶⁴ / golden ratio
+
 void mulhilo(std::uint32_t a, std::uint32_t b, std::uint32_t& hi, std::uint32_t& lo) {
   const std::uint64_t product = static_cast<std::uint64_t>(a) * b;
   hi = static_cast<std::uint32_t>(product >> 32);
   lo = static_cast<std::uint32_t>(product);
 }
 
+std::uint64_t join(std::uint32_t high, std::uint32_t low) {
+  return (static_cast<std::uint64_t>(high) << 32) | low;
+}
+
+// The top 53 of 64 random bits as a double in [0, 1).
+double unit_interval(std::uint64_t bits) { return static_cast<double>(bits >> 11) * 0x1.0p-53; }
+
 // 53 random bits from two 32-bit words, as a double in [0, 1).
 double unit_interval(std::uint32_t high, std::uint32_t low) {
-  const std::uint64_t bits = ((static_cast<std::uint64_t>(high) << 32) | low) >> 11;
-  return static_cast<double>(bits) * 0x1.0p-53;
+  return unit_interval(join(high, low));
+}
+
+PhiloxBlock counter_of(const RandomKey& key) {
+  const auto frame = static_cast<std::uint64_t>(key.frame);
+  const auto pulse = static_cast<std::uint64_t>(key.pulse);
+  return {static_cast<std::uint32_t>(frame), static_cast<std::uint32_t>(frame >> 32),
+          static_cast<std::uint32_t>(pulse),
+          static_cast<std::uint32_t>(key.purpose) | (static_cast<std::uint32_t>(pulse >> 32) << 8)};
+}
+
+std::array<std::uint32_t, 2> philox_key(std::uint64_t seed) {
+  return {static_cast<std::uint32_t>(seed), static_cast<std::uint32_t>(seed >> 32)};
+}
+
+// The ziggurat of the half-normal density f(x) = exp(−x²/2), x ≥ 0 (Marsaglia & Tsang 2000):
+// kLayers strips of equal area v. Strip 0 is the base rectangle [0, r] × [0, f(r)] plus the tail
+// x > r, drawn as a rectangle of width edge[0] = v / f(r); strip i ≥ 1 is [0, edge[i]] ×
+// [f(edge[i]), f(edge[i + 1])], with edge[1] = r and edge[kLayers] = 0.
+constexpr std::size_t kLayers = 256;
+
+struct Ziggurat {
+  std::array<double, kLayers + 1> edge{};    // x_i, decreasing
+  std::array<double, kLayers + 1> height{};  // f(x_i); height[0] = 0, the base strip's floor
+  double r = 0.0;                            // where the tail starts
+};
+
+double half_normal_density(double x) { return std::exp(-0.5 * x * x); }
+
+// Stacks equal-area strips on the base strip of tail start r (edge[1] = r … edge[kLayers − 1])
+// and returns by how much the last strip's top, f(edge[kLayers − 1]) + v / edge[kLayers − 1],
+// overshoots the peak f(0) = 1: positive when r is too small, negative when too large.
+double stack_strips(double r, Ziggurat& z) {
+  const double tail_area = std::sqrt(std::numbers::pi / 2.0) * std::erfc(r / std::numbers::sqrt2);
+  const double v = r * half_normal_density(r) + tail_area;
+  z.r = r;
+  z.edge[0] = v / half_normal_density(r);
+  z.edge[1] = r;
+  for (std::size_t i = 1; i + 1 < kLayers; ++i) {
+    const double top = half_normal_density(z.edge[i]) + v / z.edge[i];
+    if (top >= 1.0) return top - 1.0;  // past the peak before the last strip
+    z.edge[i + 1] = std::sqrt(-2.0 * std::log(top));
+  }
+  return half_normal_density(z.edge[kLayers - 1]) + v / z.edge[kLayers - 1] - 1.0;
+}
+
+// Bisects for the r that closes the stack at the peak, to the last bit of a double (1 ulp from the
+// 3.6541528853610088 other 256-layer ziggurats tabulate); the top strip's area then matches v to
+// 1e-12 (the stack amplifies r's rounding), a probability error below 1e-14.
+Ziggurat build_ziggurat() {
+  Ziggurat z;
+  double too_small = 2.0, too_large = 5.0;
+  for (;;) {
+    const double mid = 0.5 * (too_small + too_large);
+    if (mid <= too_small || mid >= too_large) break;
+    (stack_strips(mid, z) > 0.0 ? too_small : too_large) = mid;
+  }
+  stack_strips(too_large, z);
+  z.edge[kLayers] = 0.0;
+  for (std::size_t i = 1; i <= kLayers; ++i) z.height[i] = half_normal_density(z.edge[i]);
+  return z;
+}
+
+const Ziggurat& ziggurat() {
+  static const Ziggurat z = build_ziggurat();
+  return z;
+}
+
+// The blocks standard_normal reads after the key's own.
+class ExtraBlocks {
+ public:
+  explicit ExtraBlocks(const RandomKey& key) : key_(key) {}
+  PhiloxBlock next() { return normal_extra_block(key_, index_++); }
+
+ private:
+  const RandomKey& key_;
+  std::uint32_t index_ = 0;
+};
+
+// x with its sign bit flipped when `sign` (0 or bit 63) is set: no branch on a coin flip.
+double signed_by(double x, std::uint64_t sign) {
+  return std::bit_cast<double>(std::bit_cast<std::uint64_t>(x) ^ sign);
+}
+
+// |z| beyond r: Marsaglia's exponential method (Marsaglia 1964; Marsaglia & Tsang 2000 §4).
+double normal_tail(double r, ExtraBlocks& blocks) {
+  for (;;) {
+    const PhiloxBlock block = blocks.next();
+    const double x = -std::log(1.0 - unit_interval(block[0], block[1])) / r;  // log of (0, 1]
+    const double y = -std::log(1.0 - unit_interval(block[2], block[3]));
+    if (2.0 * y > x * x) return r + x;
+  }
 }
 
 }  // namespace
@@ -38,13 +140,13 @@ PhiloxBlock philox4x32_10(PhiloxBlock counter, std::array<std::uint32_t, 2> key)
 }
 
 PhiloxBlock random_block(const RandomKey& key) {
-  const auto frame = static_cast<std::uint64_t>(key.frame);
-  const PhiloxBlock counter = {static_cast<std::uint32_t>(frame), static_cast<std::uint32_t>(frame >> 32),
-                               static_cast<std::uint32_t>(key.pulse),
-                               static_cast<std::uint32_t>(key.purpose) |
-                                   (static_cast<std::uint32_t>(static_cast<std::uint64_t>(key.pulse) >> 32) << 8)};
-  return philox4x32_10(counter, {static_cast<std::uint32_t>(key.seed),
-                                 static_cast<std::uint32_t>(key.seed >> 32)});
+  return philox4x32_10(counter_of(key), philox_key(key.seed));
+}
+
+PhiloxBlock normal_extra_block(const RandomKey& key, std::uint32_t index) {
+  PhiloxBlock counter = counter_of(key);
+  counter[3] |= kExtraBlockFlag;
+  return philox4x32_10(counter, philox_key(key.seed ^ (index * kExtraKeyStep)));
 }
 
 double uniform01(const RandomKey& key) {
@@ -55,10 +157,21 @@ double uniform01(const RandomKey& key) {
 double uniform_pm1(const RandomKey& key) { return 2.0 * uniform01(key) - 1.0; }
 
 double standard_normal(const RandomKey& key) {
-  const PhiloxBlock block = random_block(key);
-  const double u1 = 1.0 - unit_interval(block[0], block[1]);  // (0, 1]: log is finite
-  const double u2 = unit_interval(block[2], block[3]);
-  return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * std::numbers::pi * u2);
+  const Ziggurat& z = ziggurat();
+  ExtraBlocks extra(key);
+  for (PhiloxBlock block = random_block(key);; block = extra.next()) {
+    // Words 0-1: the top 53 bits are the uniform, bits 0-7 the strip, bit 8 the sign.
+    const std::uint64_t bits = join(block[0], block[1]);
+    const auto strip = static_cast<std::size_t>(bits & 0xFFu);
+    const std::uint64_t sign = (bits & 0x100u) << 55;
+    const double x = unit_interval(bits) * z.edge[strip];
+    if (x < z.edge[strip + 1]) return signed_by(x, sign);
+    if (strip == 0) return signed_by(normal_tail(z.r, extra), sign);
+    // The wedge between the strip's inner rectangle and the curve.
+    const double y = z.height[strip] +
+                     unit_interval(block[2], block[3]) * (z.height[strip + 1] - z.height[strip]);
+    if (y < half_normal_density(x)) return signed_by(x, sign);
+  }
 }
 
 }  // namespace owsim

@@ -1,15 +1,24 @@
 // Protects the keyed random generator (geometry/keyed_random): Philox4x32-10 against the
-// Random123 known-answer vectors, the independence of keys and purposes, and the moments of the
-// uniform and normal draws every noise model relies on.
+// Random123 known-answer vectors, the independence of keys and purposes, the moments of the
+// uniform draws, and the ziggurat standard normal every noise model relies on (scipy's
+// Kolmogorov-Smirnov test, tail frequencies, the tail path's shape, determinism).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
 #include <set>
+#include <sstream>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "geometry/keyed_random.hpp"
+#include "python_oracle.hpp"
 
 namespace owsim {
 namespace {
@@ -40,6 +49,7 @@ TEST(KeyedRandom, SameKeySameBlock) {
 }
 
 TEST(KeyedRandom, NoTwoPurposesOrKeysShareABlock) {
+  // Includes the normal's extra blocks: they must be no other key's block, nor repeat.
   std::set<PhiloxBlock> seen;
   std::size_t draws = 0;
   for (std::uint64_t seed : {std::uint64_t{0}, std::uint64_t{1}, std::uint64_t{1} << 32,
@@ -49,8 +59,11 @@ TEST(KeyedRandom, NoTwoPurposesOrKeysShareABlock) {
       for (std::int64_t pulse : {std::int64_t{0}, std::int64_t{1}, std::int64_t{20'351},
                                  std::int64_t{1} << 32, (std::int64_t{1} << 32) + 1}) {
         for (RandomPurpose purpose : kPurposes) {
-          seen.insert(random_block(RandomKey{seed, frame, pulse, purpose}));
-          ++draws;
+          const RandomKey key{seed, frame, pulse, purpose};
+          seen.insert(random_block(key));
+          for (std::uint32_t index : {0u, 1u, 2u, 1000u})
+            seen.insert(normal_extra_block(key, index));
+          draws += 5;
         }
       }
     }
@@ -128,6 +141,130 @@ TEST(KeyedRandom, NormalMomentsAndShape) {
   EXPECT_NEAR(m.variance, 1.0, 4.0 * std::sqrt(2.0 / n));  // Var of s² for N(0,1): 2/n
   const double p = 0.682689492137;                         // P(|z| < 1)
   EXPECT_NEAR(within_one_sigma / n, p, 4.0 * std::sqrt(p * (1 - p) / n));
+}
+
+TEST(KeyedRandom, NormalIsAPureFunctionOfItsKey) {
+  const RandomKey key{42, 7, 1234, RandomPurpose::range_noise_first};
+  const double z = standard_normal(key);
+  EXPECT_EQ(standard_normal(RandomKey{key}), z);
+  // Every neighbouring key draws anew.
+  for (const RandomKey& other :
+       {RandomKey{43, 7, 1234, key.purpose}, RandomKey{41, 7, 1234, key.purpose},
+        RandomKey{42, 8, 1234, key.purpose}, RandomKey{42, 6, 1234, key.purpose},
+        RandomKey{42, 7, 1235, key.purpose}, RandomKey{42, 7, 1233, key.purpose},
+        RandomKey{42, 7, 1234 + (std::int64_t{1} << 32), key.purpose}}) {
+    EXPECT_NE(standard_normal(other), z) << other.seed << " " << other.frame << " " << other.pulse;
+  }
+  for (RandomPurpose purpose : kPurposes) {
+    if (purpose != key.purpose) EXPECT_NE(standard_normal({42, 7, 1234, purpose}), z);
+  }
+}
+
+// Draws N(0, 1) for `count` pulses of one frame.
+std::vector<double> normals(const RandomKey& first, int count) {
+  std::vector<double> z;
+  z.reserve(static_cast<std::size_t>(count));
+  for (int i = 0; i < count; ++i) {
+    z.push_back(standard_normal({first.seed, first.frame, first.pulse + i, first.purpose}));
+  }
+  return z;
+}
+
+// P(|z| > t) for N(0, 1).
+double two_sided_tail(double t) { return std::erfc(t / std::numbers::sqrt2); }
+
+// Writes `values` as little-endian float64 to `path` (numpy.fromfile reads them back).
+void write_doubles(const std::filesystem::path& path, const std::vector<double>& values) {
+  std::ofstream(path, std::ios::binary)
+      .write(reinterpret_cast<const char*>(values.data()),
+             static_cast<std::streamsize>(values.size() * sizeof(double)));
+}
+
+TEST(KeyedRandom, NormalPassesScipyGoodnessOfFit) {
+  // Two key families: the pulses of one frame, and one pulse over many frames. The
+  // Kolmogorov-Smirnov test checks each whole; a chi-square over 100 equiprobable bins of |z|
+  // sees the small local errors a wrong wedge test would make.
+  constexpr int kPulses = 1'000'000, kFrames = 200'000;
+  const std::vector<double> pulses = normals({7, 11, 0, RandomPurpose::range_noise_first}, kPulses);
+  std::vector<double> frames;
+  for (int frame = 0; frame < kFrames; ++frame) {
+    frames.push_back(standard_normal({8, frame, 20'351, RandomPurpose::range_noise_reference}));
+  }
+  const test::TempDir folder("owsim_keyed_random");
+  write_doubles(folder / "pulses.f64", pulses);
+  write_doubles(folder / "frames.f64", frames);
+  const std::string out = test::run_python(
+      "import numpy as np, scipy.stats as st\n"
+      "z = np.fromfile('" +
+      (folder / "pulses.f64").string() +
+      "', dtype='<f8')\n"
+      "w = np.fromfile('" +
+      (folder / "frames.f64").string() +
+      "', dtype='<f8')\n"
+      "counts, _ = np.histogram(np.abs(z), st.halfnorm.ppf(np.linspace(0, 1, 101)))\n"
+      "print(len(z), len(w), st.kstest(z, 'norm').pvalue, st.kstest(w, 'norm').pvalue,\n"
+      "      st.chisquare(counts).pvalue)\n");
+  std::istringstream fields(out);
+  std::size_t read_pulses = 0, read_frames = 0;
+  double ks_pulses = -1.0, ks_frames = -1.0, chi_square = -1.0;
+  fields >> read_pulses >> read_frames >> ks_pulses >> ks_frames >> chi_square;
+  ASSERT_EQ(read_pulses, pulses.size()) << out;
+  ASSERT_EQ(read_frames, frames.size()) << out;
+  EXPECT_GT(ks_pulses, 1e-3) << out;
+  EXPECT_GT(ks_frames, 1e-3) << out;
+  EXPECT_GT(chi_square, 1e-3) << out;
+}
+
+// The tail start r of a 256-layer normal ziggurat (Marsaglia & Tsang's construction, as other
+// implementations tabulate it): values beyond it come only from the tail path.
+constexpr double kTailStart = 3.6541528853610088;
+
+TEST(KeyedRandom, NormalTailFrequencies) {
+  constexpr int kDraws = 2'000'000;
+  const std::vector<double> z = normals({2024, 5, 0, RandomPurpose::range_noise_second}, kDraws);
+  int beyond3 = 0, beyond4 = 0, beyond_r = 0;
+  for (const double value : z) {
+    beyond3 += std::abs(value) > 3.0;
+    beyond4 += std::abs(value) > 4.0;
+    beyond_r += std::abs(value) > kTailStart;
+  }
+  const double n = kDraws;
+  for (const auto& [t, count] :
+       {std::pair{3.0, beyond3}, std::pair{4.0, beyond4}, std::pair{kTailStart, beyond_r}}) {
+    const double p = two_sided_tail(t);  // binomial: mean np, sd √(np(1 − p)); 5σ bound
+    EXPECT_NEAR(count, n * p, 5.0 * std::sqrt(n * p * (1.0 - p))) << "P(|z| > " << t << ")";
+  }
+  // Distinct keys draw distinct values: no value repeats among the two million.
+  std::vector<double> sorted = z;
+  std::sort(sorted.begin(), sorted.end());
+  EXPECT_EQ(std::adjacent_find(sorted.begin(), sorted.end()), sorted.end());
+}
+
+TEST(KeyedRandom, NormalTailPathHasTheTruncatedNormalShape) {
+  constexpr int kDraws = 10'000'000;  // ≈ 2,580 draws beyond r
+  std::vector<double> tail;
+  int positive = 0;
+  for (int pulse = 0; pulse < kDraws; ++pulse) {
+    const RandomKey key{2025, 6, pulse, RandomPurpose::range_noise_second};
+    const double z = standard_normal(key);
+    if (std::abs(z) <= kTailStart) continue;
+    tail.push_back(std::abs(z));
+    positive += z > 0.0;
+    // The tail path reads extra blocks: still a pure function of the key.
+    ASSERT_EQ(standard_normal(key), z) << pulse;
+  }
+  const auto k = static_cast<double>(tail.size());
+  ASSERT_GT(k, 2000.0);
+  EXPECT_NEAR(positive, k / 2.0, 5.0 * std::sqrt(k / 4.0));
+  // |z| given |z| > r is the normal truncated at r: mean m = φ(r)/Q(r), variance 1 + r·m − m².
+  const double r = kTailStart;
+  const double m = std::sqrt(2.0 / std::numbers::pi) * std::exp(-0.5 * r * r) / two_sided_tail(r);
+  const double variance = 1.0 + r * m - m * m;
+  const Moments tail_moments = moments(tail);
+  EXPECT_NEAR(tail_moments.mean, m, 5.0 * std::sqrt(variance / k));  // ±0.5 % of m = 3.897
+  // Sample variance: sd σ²·√((κ − 1)/k), κ = 7.19 the kurtosis of that truncated normal (scipy
+  // truncnorm(r, ∞)); ±24 % of σ² = 0.0535.
+  EXPECT_NEAR(tail_moments.variance, variance, 5.0 * variance * std::sqrt(6.19 / k));
 }
 
 }  // namespace
