@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "cli/progress_line.hpp"
 #include "engine/embree_device.hpp"
@@ -201,10 +202,19 @@ FlightOutputOptions flight_output_options(const FlightSetup& setup, const RunOpt
 void simulate_frames(const FrameSimulator& simulator, const FlightSetup& setup,
                      const FlightRange& range, int threads, FlightOutputs& outputs,
                      const std::function<void(std::int64_t)>& frame_done) {
+  const int frames_in_flight = std::max(2, 2 * threads);
+  // One encoding per buffer of the pipeline: a frame is encoded where it is simulated, in the
+  // parallel stage, and the in-order sink only appends its bytes.
+  std::vector<FrameEncoding> encodings(static_cast<std::size_t>(frames_in_flight));
   std::int64_t done = 0;
   run_flight(
-      simulator, setup.trajectory, range, std::max(2, 2 * threads), [&](const FrameResult& frame) {
-        outputs.add_frame(frame.view(), setup.trajectory.pose_at(frame.pulses.front().time_s));
+      simulator, setup.trajectory, range, frames_in_flight,
+      [&](const FrameResult& frame) {
+        outputs.encode_frame(frame.view(), setup.trajectory.pose_at(frame.pulses.front().time_s),
+                             encodings[static_cast<std::size_t>(frame.buffer)]);
+      },
+      [&](const FrameResult& frame) {
+        outputs.add_frame(frame.view(), encodings[static_cast<std::size_t>(frame.buffer)]);
         ++done;
         if (frame_done) frame_done(done);
       });

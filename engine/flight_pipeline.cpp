@@ -12,6 +12,11 @@ namespace owsim {
 
 void run_flight(const FrameSimulator& simulator, const PoseSource& poses, const FlightRange& range,
                 int frames_in_flight, const FrameSink& sink) {
+  run_flight(simulator, poses, range, frames_in_flight, FramePrepare(), sink);
+}
+
+void run_flight(const FrameSimulator& simulator, const PoseSource& poses, const FlightRange& range,
+                int frames_in_flight, const FramePrepare& prepare, const FrameSink& sink) {
   if (frames_in_flight < 1) throw Error("engine: frames in flight must be at least 1");
   if (range.frame_count <= 0) return;
 
@@ -20,6 +25,7 @@ void run_flight(const FrameSimulator& simulator, const PoseSource& poses, const 
   tbb::concurrent_queue<FrameResult*> free_buffers;
   for (int i = 0; i < frames_in_flight; ++i) {
     pool.push_back(std::make_unique<FrameResult>());
+    pool.back()->buffer = i;
     free_buffers.push(pool.back().get());
   }
 
@@ -45,6 +51,7 @@ void run_flight(const FrameSimulator& simulator, const PoseSource& poses, const 
                                                        [&](FrameResult* buffer) {
                                                          simulator.simulate(buffer->frame, poses,
                                                                             *buffer);
+                                                         if (prepare) prepare(*buffer);
                                                          return buffer;
                                                        }) &
           tbb::make_filter<FrameResult*, void>(tbb::filter_mode::serial_in_order,

@@ -1,8 +1,10 @@
 #pragma once
 // A flight as a stream of frames (DESIGN.md "Flight pipeline"): tbb::parallel_pipeline with a
-// serial in-order source (frame indices), parallel frame simulation, and a serial in-order sink.
+// serial in-order source (frame indices), parallel frame simulation (followed by an optional
+// parallel `prepare` step, e.g. encoding the frame's outputs), and a serial in-order sink.
 // At most `frames_in_flight` frames exist at once, each in a FrameResult recycled from a fixed
-// pool, so memory stays flat however long the flight. The sink sees frames in index order.
+// pool (FrameResult::buffer names its slot), so memory stays flat however long the flight. The
+// sink sees frames in index order.
 #include <cstdint>
 #include <functional>
 
@@ -19,8 +21,14 @@ struct FlightRange {
 // Called once per frame, in frame order, never concurrently. May throw: the pipeline stops and
 // the exception reaches the caller of run_flight.
 using FrameSink = std::function<void(const FrameResult&)>;
+// Called once per frame right after its simulation, on any thread, concurrently for different
+// frames (never for two frames in the same buffer). May throw, as the sink.
+using FramePrepare = std::function<void(const FrameResult&)>;
 
 void run_flight(const FrameSimulator& simulator, const PoseSource& poses, const FlightRange& range,
                 int frames_in_flight, const FrameSink& sink);
+// The same with `prepare` (may be empty) run on each frame in the parallel stage.
+void run_flight(const FrameSimulator& simulator, const PoseSource& poses, const FlightRange& range,
+                int frames_in_flight, const FramePrepare& prepare, const FrameSink& sink);
 
 }  // namespace owsim

@@ -20,6 +20,7 @@ namespace owsim {
 
 struct FrameResult {
   std::int64_t frame = 0;
+  int buffer = 0;  // the slot of the flight pipeline's pool holding it (0..frames in flight − 1)
   FrameSweep sweep;
   std::vector<Pulse> pulses;                // the scan pattern, firing order
   std::vector<PulseRay> rays;               // the central ray of each pulse (local ENU)

@@ -1,5 +1,6 @@
 #include "io/flight_outputs.hpp"
 
+#include <exception>
 #include <string>
 #include <string_view>
 #include <system_error>
@@ -33,7 +34,6 @@ class WordSink {
       } else {
         milows_.emplace(path);
       }
-      milows_words_.resize(static_cast<std::size_t>(scan.pulses_per_frame()));
     } else {
       if (resume_from != nullptr) {
         hellas_.emplace(WordFileWriter<std::uint32_t>::resume(path, *resume_from));
@@ -41,7 +41,6 @@ class WordSink {
       } else {
         hellas_.emplace(path);
       }
-      hellas_words_.resize(static_cast<std::size_t>(scan.pulses_per_frame()));
     }
   }
 
@@ -49,18 +48,29 @@ class WordSink {
     return scan.model == SensorModel::milows ? "flight.d64" : "flight.hellas";
   }
 
-  void add_frame(const FrameView& frame) {
+  // The frame's words into `out` (reads only scan_: safe on any thread beside append()).
+  void encode(const FrameView& frame, FrameEncoding& out) const {
+    const auto pulses = static_cast<std::size_t>(scan_.pulses_per_frame());
+    if (scan_.model == SensorModel::milows) {
+      out.milows_words.resize(pulses);
+      pack_milows_frame(frame.pulses, frame.returns, out.milows_words);
+      return;
+    }
+    out.hellas_header_word = hellas_file_header_word(frame.sweep, frame.pulses.front().time_s);
+    out.hellas_words.resize(pulses);
+    pack_hellas_frame(scan_, frame.sweep, frame.pulses, frame.returns, out.hellas_words);
+  }
+
+  void append(const FrameEncoding& encoded) {
     if (milows_) {
-      pack_milows_frame(frame.pulses, frame.returns, milows_words_);
-      milows_->write(std::span<const std::uint64_t>(milows_words_));
+      milows_->write(std::span<const std::uint64_t>(encoded.milows_words));
       return;
     }
     if (!header_written_) {
-      hellas_->write(hellas_file_header_word(frame.sweep, frame.pulses.front().time_s));
+      hellas_->write(encoded.hellas_header_word);
       header_written_ = true;
     }
-    pack_hellas_frame(scan_, frame.sweep, frame.pulses, frame.returns, hellas_words_);
-    hellas_->write(std::span<const std::uint32_t>(hellas_words_));
+    hellas_->write(std::span<const std::uint32_t>(encoded.hellas_words));
   }
 
   [[nodiscard]] WriterCheckpoint checkpoint() {
@@ -76,8 +86,6 @@ class WordSink {
   ScanParams scan_;
   std::optional<WordFileWriter<std::uint64_t>> milows_;
   std::optional<WordFileWriter<std::uint32_t>> hellas_;
-  std::vector<std::uint64_t> milows_words_;
-  std::vector<std::uint32_t> hellas_words_;
   bool header_written_ = false;
 };
 
@@ -235,21 +243,49 @@ FlightOutputs::~FlightOutputs() {
 }
 
 void FlightOutputs::add_frame(const FrameView& frame, const Pose& frame_start) {
+  encode_frame(frame, frame_start, encoding_);
+  add_frame(frame, encoding_);
+}
+
+void FlightOutputs::encode_frame(const FrameView& frame, const Pose& frame_start,
+                                 FrameEncoding& out) const {
+  out.frame = frame.frame;
+  out.frame_start = frame_start;
+  out.error = nullptr;
+  try {
+    if (words_) words_->encode(frame, out);
+    if (points_csv_ || points_las_ || points_ply_) {
+      frame_points(frame, *local_frame_, out.points);
+      if (points_csv_) {
+        out.csv_rows.clear();
+        points_csv_->encode(out.points, out.csv_rows);
+      }
+      if (points_las_) points_las_->encode(out.points, out.las);
+      if (points_ply_) PlyWriter::encode(out.points, out.ply_vertices);
+    }
+  } catch (...) {
+    out.error = std::current_exception();
+  }
+}
+
+void FlightOutputs::add_frame(const FrameView& frame, const FrameEncoding& encoded) {
   if (frame.frame != frames_done_) {
     throw Error("outputs: frame " + std::to_string(frame.frame) + " given, frame " +
                 std::to_string(frames_done_) + " expected");
   }
-  summary_.add_frame(frame.frame, frame.pulses, frame.returns);
-  if (words_) words_->add_frame(frame);
-  if (points_csv_ || points_las_ || points_ply_) {
-    frame_points(frame, *local_frame_, points_);
-    if (points_csv_) points_csv_->write(points_);
-    if (points_las_) points_las_->write(points_);
-    if (points_ply_) points_ply_->write(points_);
+  if (encoded.frame != frame.frame) {
+    throw Error("outputs: frame " + std::to_string(frame.frame) +
+                " given with the encoding of frame " + std::to_string(encoded.frame));
   }
-  if (trajectory_) trajectory_->write(frame_start);
+  if (encoded.error) std::rethrow_exception(encoded.error);
+  summary_.add_frame(frame.frame, frame.pulses, frame.returns);
+  if (words_) words_->append(encoded);
+  if (points_csv_) points_csv_->append(encoded.csv_rows, encoded.points.size());
+  if (points_las_) points_las_->append(encoded.las);
+  if (points_ply_) points_ply_->append(encoded.ply_vertices);
+  if (trajectory_) trajectory_->write(encoded.frame_start);
   if (quicklook_) {
-    quicklook_->add_trajectory_point(frame_start.position_enu_m);
+    quicklook_->add_trajectory_point(encoded.frame_start.position_enu_m);
     quicklook_->add_frame(frame);
   }
   ++frames_done_;

@@ -23,6 +23,7 @@
 #include "geometry/geodetic_frame.hpp"
 #include "geometry/scene.hpp"
 #include "io/flight_summary.hpp"
+#include "io/frame_encoding.hpp"
 #include "io/point_record.hpp"
 #include "sensor/frame_view.hpp"
 #include "sensor/mounting.hpp"
@@ -70,8 +71,17 @@ class FlightOutputs {
   FlightOutputs& operator=(const FlightOutputs&) = delete;
 
   // One frame, in order from frames_done(); `frame_start` is the aircraft's pose at the frame's
-  // first pulse. Writes a checkpoint afterwards if one is due.
+  // first pulse. Writes a checkpoint afterwards if one is due. encode_frame then add_frame.
   void add_frame(const FrameView& frame, const Pose& frame_start);
+
+  // The same in two steps, so the costly part can run on the pipeline's parallel stage:
+  // encode_frame() fills `out` with the frame's bytes for every output (any frame, any order, on
+  // any thread, concurrently with itself and with add_frame(); each call needs its own `out`;
+  // an error is kept in `out`, not thrown). add_frame() appends them: frames in order from
+  // frames_done(), each with its own encoding; throws what encoding met, or owsim::Error if
+  // `encoded` is not of `frame`.
+  void encode_frame(const FrameView& frame, const Pose& frame_start, FrameEncoding& out) const;
+  void add_frame(const FrameView& frame, const FrameEncoding& encoded);
 
   // Completes every file and writes summary.json with `run_facts` merged into the totals; then
   // removes the checkpoint.
@@ -99,7 +109,7 @@ class FlightOutputs {
   std::unique_ptr<PlyWriter> points_ply_;
   std::unique_ptr<TrajectoryCsvWriter> trajectory_;
   std::unique_ptr<Quicklook> quicklook_;
-  std::vector<PointRecord> points_;  // reused per frame
+  FrameEncoding encoding_;  // add_frame(frame, frame_start)'s, reused per frame
   std::int64_t frames_done_ = 0;
   bool resumed_while_finishing_ = false;  // the checkpoint already describes the finished frames
   bool finished_ = false;

@@ -204,7 +204,7 @@ std::array<unsigned char, kLasHeaderBytes> LasWriter::header_bytes() const {
   return header;
 }
 
-void LasWriter::append_point(const PointRecord& point) {
+void LasWriter::encode_point(const PointRecord& point, LasEncodedPoints& out) const {
   const std::filesystem::path& path = file_.final_path();
   if (point.return_number < 1 || point.return_number > point.number_of_returns ||
       point.number_of_returns > kLasMaxReturns) {
@@ -236,11 +236,11 @@ void LasWriter::append_point(const PointRecord& point) {
       record_value(northing_m, grid_.offset_m[1], grid_.scale_m, path, point),
       record_value(point.geodetic.h_m, grid_.offset_m[2], grid_.scale_m, path, point)};
   for (std::size_t axis = 0; axis < 3; ++axis) {
-    if (points_written_ == 0 || record[axis] < min_record_[axis]) min_record_[axis] = record[axis];
-    if (points_written_ == 0 || record[axis] > max_record_[axis]) max_record_[axis] = record[axis];
+    if (out.points == 0 || record[axis] < out.min_record[axis]) out.min_record[axis] = record[axis];
+    if (out.points == 0 || record[axis] > out.max_record[axis]) out.max_record[axis] = record[axis];
   }
 
-  unsigned char* p = buffer_.data() + buffered_bytes_;
+  unsigned char* p = out.records.data() + out.points * kLasPointRecordBytes;
   put_i32(p, 0, record[0]);
   put_i32(p, 4, record[1]);
   put_i32(p, 8, record[2]);
@@ -252,17 +252,45 @@ void LasWriter::append_point(const PointRecord& point) {
   put<std::uint16_t>(p, 18, static_cast<std::uint16_t>(las_scan_angle(point.scan_angle_deg)));
   put<std::uint16_t>(p, 20, 0);  // point source ID
   put_double(p, 22, point.time_s);
-  buffered_bytes_ += kLasPointRecordBytes;
 
-  ++points_by_return_[static_cast<std::size_t>(point.return_number - 1)];
-  ++points_written_;
+  ++out.points_by_return[static_cast<std::size_t>(point.return_number - 1)];
+  ++out.points;
 }
 
 void LasWriter::write(std::span<const PointRecord> points) {
-  for (const PointRecord& point : points) {
-    append_point(point);
-    if (buffered_bytes_ == buffer_.size()) flush_buffer();
+  encode(points, encoded_);
+  append(encoded_);
+}
+
+void LasWriter::encode(std::span<const PointRecord> points, LasEncodedPoints& out) const {
+  out.records.resize(points.size() * kLasPointRecordBytes);
+  out.points = 0;
+  out.points_by_return.fill(0);
+  for (const PointRecord& point : points) encode_point(point, out);
+}
+
+void LasWriter::append(const LasEncodedPoints& encoded) {
+  if (encoded.points == 0) return;
+  const std::size_t bytes = encoded.points * kLasPointRecordBytes;
+  if (buffered_bytes_ + bytes > buffer_.size()) flush_buffer();
+  if (bytes >= buffer_.size()) {
+    file_.write(encoded.records.data(), bytes);
+  } else {
+    std::copy_n(encoded.records.data(), bytes, buffer_.data() + buffered_bytes_);
+    buffered_bytes_ += bytes;
   }
+  for (std::size_t axis = 0; axis < 3; ++axis) {
+    if (points_written_ == 0 || encoded.min_record[axis] < min_record_[axis]) {
+      min_record_[axis] = encoded.min_record[axis];
+    }
+    if (points_written_ == 0 || encoded.max_record[axis] > max_record_[axis]) {
+      max_record_[axis] = encoded.max_record[axis];
+    }
+  }
+  for (std::size_t r = 0; r < points_by_return_.size(); ++r) {
+    points_by_return_[r] += encoded.points_by_return[r];
+  }
+  points_written_ += encoded.points;
 }
 
 void LasWriter::flush_buffer() {

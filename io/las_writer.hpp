@@ -85,6 +85,16 @@ struct LasCheckpoint {
   friend bool operator==(const LasCheckpoint&, const LasCheckpoint&) = default;
 };
 
+// Points encoded by LasWriter::encode(): their 30-byte records and the header statistics they
+// add. Reused from call to call (encode() clears it), so it allocates only while it grows.
+struct LasEncodedPoints {
+  std::vector<unsigned char> records;  // points · kLasPointRecordBytes
+  std::uint64_t points = 0;
+  std::array<std::uint64_t, 15> points_by_return{};
+  std::array<std::int32_t, 3> min_record{};  // meaningful when points > 0
+  std::array<std::int32_t, 3> max_record{};
+};
+
 class LasWriter final : public PointSink {
  public:
   // Writes the header and the WKT record. Throws owsim::Error on a bad origin, a scale that is
@@ -101,6 +111,11 @@ class LasWriter final : public PointSink {
   // grid's valid range (GeographicLib UTMUPS), or has a return number outside
   // 1..number_of_returns ≤ 15.
   void write(std::span<const PointRecord> points) override;
+  // write() in two steps, so the encoding can run on other threads: encode() turns `points` into
+  // records (reads only what the constructor set, so it may run concurrently with itself and
+  // with append(); throws as write()), append() writes them and adds their statistics.
+  void encode(std::span<const PointRecord> points, LasEncodedPoints& out) const;
+  void append(const LasEncodedPoints& encoded);
   // Completes the header (counts, bounds) and renames the file to its final name.
   void finish() override;
   [[nodiscard]] std::uint64_t points_written() const override { return points_written_; }
@@ -110,7 +125,7 @@ class LasWriter final : public PointSink {
 
  private:
   LasWriter(AtomicOutputFile file, const LasWriterOptions& options, LasDate creation_date);
-  void append_point(const PointRecord& point);
+  void encode_point(const PointRecord& point, LasEncodedPoints& out) const;
   void flush_buffer();
   [[nodiscard]] std::array<unsigned char, kLasHeaderBytes> header_bytes() const;
 
@@ -121,6 +136,7 @@ class LasWriter final : public PointSink {
   std::uint32_t offset_to_points_ = 0;
   std::vector<unsigned char> buffer_;
   std::size_t buffered_bytes_ = 0;
+  LasEncodedPoints encoded_;  // write()'s, reused
   std::uint64_t points_written_ = 0;
   std::array<std::uint64_t, 15> points_by_return_{};
   std::array<std::int32_t, 3> min_record_{};

@@ -1,5 +1,6 @@
 #include "io/ply_writer.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <string>
 #include <string_view>
@@ -86,17 +87,37 @@ WriterCheckpoint PlyWriter::checkpoint() {
 }
 
 void PlyWriter::write(std::span<const PointRecord> points) {
+  encode(points, vertices_);
+  append(vertices_);
+}
+
+void PlyWriter::encode(std::span<const PointRecord> points, std::vector<unsigned char>& vertices) {
+  vertices.resize(points.size() * kPlyVertexBytes);
+  unsigned char* v = vertices.data();
   for (const PointRecord& point : points) {
-    unsigned char* v = buffer_.data() + buffered_bytes_;
     for (int axis = 0; axis < 3; ++axis) {
       store_little_endian(std::bit_cast<std::uint64_t>(point.enu_m[axis]), v + 8 * axis);
     }
     store_little_endian(std::bit_cast<std::uint32_t>(static_cast<float>(point.energy_rel)), v + 24);
     v[28] = ply_class(point.surface);
-    buffered_bytes_ += kPlyVertexBytes;
-    ++points_written_;
-    if (buffered_bytes_ == buffer_.size()) flush_buffer();
+    v += kPlyVertexBytes;
   }
+}
+
+void PlyWriter::append(std::span<const unsigned char> vertices) {
+  if (vertices.size() % kPlyVertexBytes != 0) {
+    throw input_error(file_.final_path().string(),
+                      std::to_string(vertices.size()) + " bytes are not whole vertices");
+  }
+  if (buffered_bytes_ + vertices.size() > buffer_.size()) flush_buffer();
+  if (vertices.size() >= buffer_.size()) {
+    file_.write(vertices.data(), vertices.size());
+  } else {
+    std::copy(vertices.begin(), vertices.end(),
+              buffer_.begin() + static_cast<std::ptrdiff_t>(buffered_bytes_));
+    buffered_bytes_ += vertices.size();
+  }
+  points_written_ += vertices.size() / kPlyVertexBytes;
 }
 
 void PlyWriter::flush_buffer() {

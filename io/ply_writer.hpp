@@ -43,6 +43,10 @@ class PlyWriter final : public PointSink {
                                         AtomicOutputOptions options = {});
 
   void write(std::span<const PointRecord> points) override;
+  // write() in two steps, so the encoding can run on other threads: encode() replaces `vertices`
+  // with the 29-byte vertices of `points`; append() writes encoded vertices.
+  static void encode(std::span<const PointRecord> points, std::vector<unsigned char>& vertices);
+  void append(std::span<const unsigned char> vertices);
   // Rewrites the header with the vertex count and renames the file to its final name.
   void finish() override;
   [[nodiscard]] std::uint64_t points_written() const override { return points_written_; }
@@ -56,6 +60,7 @@ class PlyWriter final : public PointSink {
   AtomicOutputFile file_;
   std::vector<unsigned char> buffer_;
   std::size_t buffered_bytes_ = 0;
+  std::vector<unsigned char> vertices_;  // write()'s encoded vertices, reused
   std::uint64_t points_written_ = 0;
 };
 

@@ -1,6 +1,5 @@
 #include "io/points_csv_writer.hpp"
 
-#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -12,7 +11,6 @@ namespace owsim {
 namespace {
 
 constexpr std::size_t kFlushBytes = std::size_t{1} << 20;
-constexpr std::size_t kRowBytesMax = 1024;  // a row without its object cell, finite values
 
 // Drops the sign of a formatted zero ("-0.0000" → "0.0000") so the output has one spelling.
 void append_unsigned_zero(std::string& out, const char* first, const char* last) {
@@ -70,13 +68,8 @@ PointsCsvWriter::PointsCsvWriter(AtomicOutputFile file, std::vector<std::string>
                                  std::uint64_t points_written)
     : file_(std::move(file)), points_written_(points_written) {
   object_cells_.reserve(object_ids.size());
-  std::size_t longest_cell = 0;
-  for (const std::string& id : object_ids) {
-    object_cells_.push_back(csv_cell(id));
-    longest_cell = std::max(longest_cell, object_cells_.back().size());
-  }
-  // Room for one more row beyond the flush mark, so appending a row never reallocates.
-  buffer_.reserve(kFlushBytes + kRowBytesMax + longest_cell);
+  for (const std::string& id : object_ids) object_cells_.push_back(csv_cell(id));
+  buffer_.reserve(kFlushBytes);  // append() never fills it past the flush mark
 }
 
 PointsCsvWriter::PointsCsvWriter(std::filesystem::path final_path,
@@ -99,14 +92,13 @@ WriterCheckpoint PointsCsvWriter::checkpoint() {
   return {file_.bytes_written(), points_written_};
 }
 
-void PointsCsvWriter::append_row(const PointRecord& point) {
+void PointsCsvWriter::append_row(const PointRecord& point, std::string& out) const {
   if (point.object_index != kNoObject && point.object_index >= object_cells_.size()) {
     throw input_error(file_.final_path().string(),
                       "object index " + std::to_string(point.object_index) +
                           " is not in the table of " + std::to_string(object_cells_.size()) +
                           " object ids");
   }
-  std::string& out = buffer_;
   append_csv_integer(out, point.frame);
   out += ',';
   append_csv_integer(out, point.pulse);
@@ -144,11 +136,23 @@ void PointsCsvWriter::append_row(const PointRecord& point) {
 }
 
 void PointsCsvWriter::write(std::span<const PointRecord> points) {
-  for (const PointRecord& point : points) {
-    append_row(point);
-    ++points_written_;
-    if (buffer_.size() >= kFlushBytes) flush_buffer();
+  rows_.clear();
+  encode(points, rows_);
+  append(rows_, points.size());
+}
+
+void PointsCsvWriter::encode(std::span<const PointRecord> points, std::string& rows) const {
+  for (const PointRecord& point : points) append_row(point, rows);
+}
+
+void PointsCsvWriter::append(std::string_view rows, std::uint64_t row_count) {
+  if (buffer_.size() + rows.size() > kFlushBytes) flush_buffer();
+  if (rows.size() >= kFlushBytes) {
+    file_.write(rows);
+  } else {
+    buffer_ += rows;
   }
+  points_written_ += row_count;
 }
 
 void PointsCsvWriter::flush_buffer() {

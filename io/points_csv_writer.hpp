@@ -43,6 +43,11 @@ class PointsCsvWriter final : public PointSink {
 
   // Throws owsim::Error if a record's object_index is neither kNoObject nor in the table.
   void write(std::span<const PointRecord> points) override;
+  // write() in two steps, so the formatting can run on other threads: encode() appends the rows
+  // of `points` to `rows` (reads only what the constructor set, so it may run concurrently with
+  // itself and with append(); throws as write()), append() writes `row_count` encoded rows.
+  void encode(std::span<const PointRecord> points, std::string& rows) const;
+  void append(std::string_view rows, std::uint64_t row_count);
   void finish() override;
   [[nodiscard]] std::uint64_t points_written() const override { return points_written_; }
   // Hands every row written so far to the kernel; where to resume from.
@@ -51,12 +56,13 @@ class PointsCsvWriter final : public PointSink {
  private:
   PointsCsvWriter(AtomicOutputFile file, std::vector<std::string> object_ids,
                   std::uint64_t points_written);
-  void append_row(const PointRecord& point);
+  void append_row(const PointRecord& point, std::string& out) const;
   void flush_buffer();
 
   AtomicOutputFile file_;
   std::vector<std::string> object_cells_;  // the ids, already CSV-quoted where needed
   std::string buffer_;
+  std::string rows_;  // write()'s encoded rows, reused
   std::uint64_t points_written_ = 0;
 };
 

@@ -1,0 +1,299 @@
+// Protects the split of FlightOutputs::add_frame into a parallel encode_frame and a serial
+// add_frame (io/frame_encoding.hpp): frames encoded out of order, on several threads, into a small
+// pool of reused encodings, then added in order, give byte for byte the files of frames added one
+// at a time, and the points and words of writers fed the old way (frame_points and the writers'
+// write(), one point at a time); an encoding error surfaces when its frame is added, in frame
+// order, and an encoding of another frame is refused.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <optional>
+#include <random>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "geometry/error.hpp"
+#include "geometry/geodetic_frame.hpp"
+#include "geometry/scene.hpp"
+#include "io/flight_outputs.hpp"
+#include "io/frame_encoding.hpp"
+#include "io/frame_points.hpp"
+#include "io/frame_words.hpp"
+#include "io/las_writer.hpp"
+#include "io/ply_writer.hpp"
+#include "io/points_csv_writer.hpp"
+#include "io/word_file.hpp"
+#include "sensor/scan_pattern.hpp"
+
+namespace owsim {
+namespace {
+
+namespace fs = std::filesystem;
+
+const Geodetic kOrigin{48.6881, 10.8447, 450.0};
+constexpr std::int64_t kFrames = 9;
+constexpr std::size_t kPool = 3;  // encodings in flight
+
+std::string content(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
+std::map<std::string, std::string> files_under(const fs::path& root) {
+  std::map<std::string, std::string> files;
+  for (const auto& entry : fs::recursive_directory_iterator(root)) {
+    if (entry.is_regular_file()) {
+      files[fs::relative(entry.path(), root).string()] = content(entry.path());
+    }
+  }
+  return files;
+}
+
+// The scan's own pulses, rays fanning out from a moving sensor and returns of every class drawn
+// from a generator seeded by the frame, so frame k is the same whenever it is made.
+struct SyntheticFrame {
+  FrameSweep sweep;
+  std::vector<Pulse> pulses;
+  std::vector<PulseRay> rays;
+  std::vector<PulseReturns> returns;
+  Pose start;
+  std::int64_t frame = 0;
+
+  [[nodiscard]] FrameView view() const { return {frame, sweep, pulses, rays, returns}; }
+};
+
+SyntheticFrame synthetic_frame(const ScanParams& scan, std::int64_t frame) {
+  SyntheticFrame f;
+  f.frame = frame;
+  f.sweep = frame_sweep(scan, 42, frame);
+  const auto n = static_cast<std::size_t>(scan.pulses_per_frame());
+  f.pulses.resize(n);
+  f.rays.resize(n);
+  f.returns.resize(n);
+  const Eigen::Vector3d origin(-300.0 + 13.0 * static_cast<double>(frame), 5.0, 100.0);
+  std::mt19937_64 rng(static_cast<std::uint64_t>(frame) + 1);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (std::size_t k = 0; k < n; ++k) {
+    const Pulse pulse = pulse_of_frame(scan, f.sweep, static_cast<int>(k));
+    f.pulses[k] = pulse;
+    const double beta = pulse.beta_deg * 0.0174533;
+    const double alpha = pulse.reference ? 0.0 : pulse.alpha_deg * 0.0174533;
+    f.rays[k] = {origin, Eigen::Vector3d(std::sin(beta), std::cos(beta), alpha - 0.3).normalized()};
+    PulseReturns& returns = f.returns[k];
+    const double draw = unit(rng);
+    returns.count = pulse.reference ? 0 : draw < 0.4 ? 1 : draw < 0.45 ? 2 : 0;
+    for (int r = 0; r < returns.count; ++r) {
+      Return& ret = returns.returns[r];
+      const auto object = static_cast<std::uint32_t>(rng() % 5);  // 0, 1 wires, 2 pole, 3 tree
+      ret.object_index = object;
+      ret.surface = static_cast<std::uint8_t>(object < 2 ? 0 : object - 1);
+      ret.true_range_m = 40.0 + 800.0 * unit(rng) + 100.0 * r;
+      ret.range_m = ret.true_range_m + 0.4 * (unit(rng) - 0.5);
+      ret.counter = static_cast<std::uint16_t>(ret.range_m / 0.6);
+      ret.energy_rel = 0.2 * unit(rng);
+      ret.incidence_deg = 90.0 * unit(rng);
+    }
+    if (returns.count > 0) returns.counter1 = returns.returns[0].counter;
+    if (returns.count > 1) returns.counter2 = returns.returns[1].counter;
+  }
+  f.start.time_s = f.pulses.front().time_s;
+  f.start.position_enu_m = origin;
+  f.start.attitude = {1.0, -4.0, 90.0 + 0.5 * static_cast<double>(frame)};
+  return f;
+}
+
+Scene small_scene() {
+  Scene scene;
+  scene.terrain.kind = TerrainKind::flat;
+  for (int n = 1; n <= 2; ++n) {
+    Conductor& wire = scene.conductors.emplace_back();
+    wire.id = "span/" + std::to_string(n);
+    wire.points_enu_m = {{-500.0, 4.0 * n, 30.0}, {0.0, 4.0 * n, 22.0}, {500.0, 4.0 * n, 30.0}};
+  }
+  scene.cylinders.push_back({"p1", SurfaceClass::pole, {50.0, 50.0, 0.0}, 0.3, 12.0, 0.3});
+  scene.cylinders.push_back({"t1", SurfaceClass::tree, {-100.0, 80.0, 0.0}, 3.0, 15.0, 0.2});
+  return scene;
+}
+
+class FrameEncodingTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("owsim_frame_encoding_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    for (std::int64_t f = 0; f < kFrames; ++f) frames_.push_back(synthetic_frame(scan_, f));
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  [[nodiscard]] FlightOutputOptions options(const std::string& folder) const {
+    FlightOutputOptions o;
+    o.directory = dir_ / folder;
+    o.quicklook_every_nth_frame = 4;
+    o.map_region = Eigen::AlignedBox2d(Eigen::Vector2d(-800.0, -800.0), Eigen::Vector2d(800, 800));
+    return o;
+  }
+
+  // Every frame through add_frame(frame, frame_start), one at a time.
+  void write_frame_by_frame(const std::string& folder) const {
+    FlightOutputs outputs(options(folder), scene_, scan_, local_frame_);
+    for (const SyntheticFrame& frame : frames_) outputs.add_frame(frame.view(), frame.start);
+    outputs.finish({{"scenario", "synthetic"}});
+  }
+
+  // The frames in batches of kPool, each batch encoded on kPool threads at once (the batch's last
+  // frame first) into a pool of reused encodings, then added in order.
+  void write_encoded_in_parallel(const std::string& folder) const {
+    FlightOutputs outputs(options(folder), scene_, scan_, local_frame_);
+    std::vector<FrameEncoding> pool(kPool);
+    for (std::size_t first = 0; first < frames_.size(); first += kPool) {
+      const std::size_t end = std::min(first + kPool, frames_.size());
+      std::vector<std::thread> workers;
+      for (std::size_t f = end; f-- > first;) {
+        workers.emplace_back(
+            [&, f] { outputs.encode_frame(frames_[f].view(), frames_[f].start, pool[f % kPool]); });
+      }
+      for (std::thread& worker : workers) worker.join();
+      for (std::size_t f = first; f < end; ++f)
+        outputs.add_frame(frames_[f].view(), pool[f % kPool]);
+    }
+    outputs.finish({{"scenario", "synthetic"}});
+  }
+
+  // points.* and the word file the way FlightOutputs wrote them before the split: frame_points
+  // and the writers' write(), here one point at a time.
+  void write_old_way(const std::string& folder) const {
+    const fs::path dir = dir_ / folder;
+    fs::create_directories(dir);
+    PointsCsvWriter csv(dir / "points.csv", {"span/1", "span/2", "p1", "t1", "terrain"});
+    LasWriterOptions las_options;
+    las_options.origin = kOrigin;
+    LasWriter las(dir / "points.las", las_options);
+    PlyWriter ply(dir / "points.ply");
+    std::optional<MilowsWordWriter> milows;
+    std::optional<HellasWordWriter> hellas;
+    if (scan_.model == SensorModel::milows) {
+      milows.emplace(dir / "flight.d64");
+    } else {
+      hellas.emplace(dir / "flight.hellas");
+    }
+    std::vector<PointRecord> points;
+    for (const SyntheticFrame& frame : frames_) {
+      frame_points(frame.view(), local_frame_, points);
+      for (const PointRecord& point : points) {
+        csv.write({&point, 1});
+        las.write({&point, 1});
+        ply.write({&point, 1});
+      }
+      const auto n = frame.pulses.size();
+      if (milows) {
+        std::vector<std::uint64_t> words(n);
+        pack_milows_frame(frame.pulses, frame.returns, words);
+        milows->write(std::span<const std::uint64_t>(words));
+      } else {
+        if (frame.frame == 0) {
+          hellas->write(hellas_file_header_word(frame.sweep, frame.pulses.front().time_s));
+        }
+        std::vector<std::uint32_t> words(n);
+        pack_hellas_frame(scan_, frame.sweep, frame.pulses, frame.returns, words);
+        hellas->write(std::span<const std::uint32_t>(words));
+      }
+    }
+    csv.finish();
+    las.finish();
+    ply.finish();
+    if (milows) milows->commit();
+    if (hellas) hellas->commit();
+  }
+
+  void expect_same_bytes_every_way() const {
+    write_frame_by_frame("one_by_one");
+    write_encoded_in_parallel("parallel");
+    write_old_way("old_way");
+    const auto one_by_one = files_under(dir_ / "one_by_one");
+    const auto parallel = files_under(dir_ / "parallel");
+    const auto old_way = files_under(dir_ / "old_way");
+    const std::string words = scan_.model == SensorModel::milows ? "flight.d64" : "flight.hellas";
+    for (const std::string name :
+         {words, std::string("points.csv"), std::string("points.las"), std::string("points.ply"),
+          std::string("trajectory.csv"), std::string("summary.json"),
+          std::string("quicklook/map.png"), std::string("quicklook/frame_000004.png")}) {
+      ASSERT_TRUE(one_by_one.contains(name)) << name;
+      ASSERT_TRUE(parallel.contains(name)) << name;
+      EXPECT_TRUE(parallel.at(name) == one_by_one.at(name)) << name << " differs";
+    }
+    EXPECT_EQ(parallel.size(), one_by_one.size());
+    for (const std::string name :
+         {words, std::string("points.csv"), std::string("points.las"), std::string("points.ply")}) {
+      ASSERT_TRUE(old_way.contains(name)) << name;
+      EXPECT_TRUE(old_way.at(name) == one_by_one.at(name)) << name << " differs from the old way";
+    }
+    // Enough points that the comparison means something: about 0.45 returns a pulse.
+    const auto rows =
+        std::count(one_by_one.at("points.csv").begin(), one_by_one.at("points.csv").end(), '\n');
+    EXPECT_GT(rows, static_cast<long>(kFrames) * scan_.pulses_per_frame() / 3);
+  }
+
+  fs::path dir_;
+  ScanParams scan_;
+  Scene scene_ = small_scene();
+  LocalFrame local_frame_{kOrigin};
+  std::vector<SyntheticFrame> frames_;
+};
+
+TEST_F(FrameEncodingTest, MilowsFramesEncodedInParallelGiveTheSameBytes) {
+  expect_same_bytes_every_way();
+}
+
+TEST_F(FrameEncodingTest, HellasFramesEncodedInParallelGiveTheSameBytes) {
+  scan_.model = SensorModel::hellas;
+  frames_.clear();
+  for (std::int64_t f = 0; f < kFrames; ++f) frames_.push_back(synthetic_frame(scan_, f));
+  expect_same_bytes_every_way();
+}
+
+TEST_F(FrameEncodingTest, AnEncodingErrorSurfacesWhenItsFrameIsAdded) {
+  // Frames 1 and 2 name objects the points.csv table does not hold; frame 2 is encoded first.
+  frames_[1].returns[5].count = 1;
+  frames_[1].returns[5].returns[0].object_index = 77;
+  frames_[2].returns[5].count = 1;
+  frames_[2].returns[5].returns[0].object_index = 99;
+  FlightOutputs outputs(options("errors"), scene_, scan_, local_frame_);
+  std::vector<FrameEncoding> pool(3);
+  for (std::size_t f = 3; f-- > 0;)
+    outputs.encode_frame(frames_[f].view(), frames_[f].start, pool[f]);
+  EXPECT_FALSE(pool[0].error);
+  EXPECT_TRUE(pool[2].error);
+  outputs.add_frame(frames_[0].view(), pool[0]);
+  try {
+    outputs.add_frame(frames_[1].view(), pool[1]);
+    FAIL() << "frame 1's error was not thrown";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("object index 77"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(outputs.frames_done(), 1);
+}
+
+TEST_F(FrameEncodingTest, AnEncodingOfAnotherFrameIsRefused) {
+  FlightOutputs outputs(options("mismatch"), scene_, scan_, local_frame_);
+  FrameEncoding encoding;
+  outputs.encode_frame(frames_[1].view(), frames_[1].start, encoding);
+  try {
+    outputs.add_frame(frames_[0].view(), encoding);
+    FAIL() << "an encoding of frame 1 was taken for frame 0";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("encoding of frame 1"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(outputs.frames_done(), 0);
+}
+
+}  // namespace
+}  // namespace owsim
