@@ -20,10 +20,11 @@ std::uint16_t time_tag(double t_s, double ticks_per_s, std::uint32_t modulus) {
   if (!std::isfinite(t_s)) throw Error("time tag: pulse time is not finite");
   const double ticks = t_s * ticks_per_s;
   const double whole = std::floor(ticks + std::abs(ticks) * 1e-14);
-  if (std::abs(whole) < 0x1p62) {  // the common case, in integers: the same value, 10× faster
-    const auto m = static_cast<std::int64_t>(modulus);
-    const std::int64_t wrapped = static_cast<std::int64_t>(whole) % m;
-    return static_cast<std::uint16_t>(wrapped < 0 ? wrapped + m : wrapped);
+  // The common case in integers, the same value: both tag ranges are powers of two, so the
+  // two's-complement mask is the floored modulo, negative tick counts included.
+  if (std::abs(whole) < 0x1p62 && (modulus & (modulus - 1)) == 0) {
+    return static_cast<std::uint16_t>(static_cast<std::int64_t>(whole) &
+                                      static_cast<std::int64_t>(modulus - 1));
   }
   double wrapped = std::fmod(whole, static_cast<double>(modulus));  // exact for any double
   if (wrapped < 0.0) wrapped += modulus;
