@@ -72,7 +72,7 @@ struct FlightSetup {
                                                         const RunOptions& options);
 
 // The frame pipeline of a run: frames `range` simulated by `simulator` (in parallel on the calling
-// thread's TBB arena, 2 frames in flight per thread, at least 2) and fed to `outputs` in frame
+// thread's TBB arena, one frame in flight per thread, at least 2) and fed to `outputs` in frame
 // order with the aircraft's pose at each frame's first pulse. `frame_done` (may be empty) is told
 // how many frames are done after each one.
 void simulate_frames(const FrameSimulator& simulator, const FlightSetup& setup,
