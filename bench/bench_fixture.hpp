@@ -4,8 +4,8 @@
 // ground), or the scenario named by the environment variable OWSIM_BENCH_SCENARIO. Built the way
 // `owsim run` builds it (scene, trajectory, Embree scene over what the flight can reach, frame
 // simulator), once per benchmark program, on first use. `frame` is the middle frame of the
-// scenario's flight; `traced` holds it simulated whole (pattern, rays, candidates, returns) for
-// the stages after the trace. Bench code only.
+// scenario's flight; `traced` holds it simulated whole (pattern, rays, returns) and `candidates`
+// what its trace found, for the stages after the trace. Bench code only.
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "engine/embree_device.hpp"
 #include "engine/embree_scene.hpp"
@@ -72,6 +73,8 @@ struct BenchFixture {
             FrameSimulatorParams{scenario.scan, scenario.receiver, scenario.mount, scenario.seed},
             embree_scene, TraceApi::stream) {
     simulator.simulate(frame, trajectory, traced);
+    candidates.resize(traced.rays.size());
+    simulator.tracer().trace(traced.rays, traced.active, candidates);
   }
   BenchFixture(const BenchFixture&) = delete;
   BenchFixture& operator=(const BenchFixture&) = delete;
@@ -88,7 +91,8 @@ struct BenchFixture {
   EmbreeDevice device;
   EmbreeScene embree_scene;
   FrameSimulator simulator;
-  FrameResult traced;  // `frame` simulated whole
+  FrameResult traced;                       // `frame` simulated whole
+  std::vector<PulseCandidates> candidates;  // what the trace of `traced` found
 };
 
 // The program's fixture, built on first use.

@@ -18,7 +18,7 @@ void BM_ReceiveFrame(benchmark::State& state) {
   tbb::task_arena arena(threads);
   FrameResult frame = f.traced;
   for (auto _ : state) {
-    arena.execute([&] { f.simulator.receive(frame); });
+    arena.execute([&] { f.simulator.receive(frame, f.candidates); });
     benchmark::DoNotOptimize(frame.returns.data());
   }
   state.SetItemsProcessed(state.iterations() * f.pulses_per_frame());
@@ -32,8 +32,8 @@ void BM_SelectReturns(benchmark::State& state) {
   std::array<Candidate, PulseCandidates::kMaxWires + 1> gathered;
   std::int64_t pulses = 0;
   for (auto _ : state) {
-    for (std::size_t k = 0; k < f.traced.candidates.size(); ++k) {
-      const std::span<Candidate> candidates = f.traced.candidates[k].gather(gathered);
+    for (std::size_t k = 0; k < f.candidates.size(); ++k) {
+      const std::span<Candidate> candidates = f.candidates[k].gather(gathered);
       if (candidates.empty()) continue;
       benchmark::DoNotOptimize(select_returns(candidates, f.scenario.receiver, f.scenario.seed,
                                               f.frame, static_cast<int>(k)));

@@ -29,7 +29,6 @@ void FrameSimulator::prepare(std::int64_t frame, const PoseSource& poses, FrameR
   out.pulses.resize(count);
   out.rays.resize(count);
   out.active.resize(count);
-  out.candidates.resize(count);
   out.returns.resize(count);
 
   const double frame_start = pulse_time_s(scan, frame, 0);
@@ -48,30 +47,52 @@ void FrameSimulator::build_rays(std::int64_t frame, const PoseSource& poses,
                     });
 }
 
-void FrameSimulator::receive_range(FrameResult& out, int begin, int end) const {
+void FrameSimulator::receive_range(FrameResult& out, std::span<const PulseCandidates> candidates,
+                                   int begin, int end, Scratch& scratch) const {
   const ScanParams& scan = params_.scan;
   const ReceiverParams& receiver = params_.receiver;
+  const auto count = static_cast<std::size_t>(end - begin);
+  scratch.choices.resize(count);
+  scratch.noise_keys.clear();
   std::array<Candidate, PulseCandidates::kMaxWires + 1> gathered;
-  for (int k = begin; k < end; ++k) {
-    const auto index = static_cast<std::size_t>(k);
-    PulseReturns& returns = out.returns[index];
-    if (out.active[index] == 0) {
+  for (std::size_t j = 0; j < count; ++j) {
+    const int k = begin + static_cast<int>(j);
+    if (out.active[static_cast<std::size_t>(k)] == 0) continue;
+    const ReturnChoice& choice = scratch.choices[j] =
+        choose_returns(candidates[j].gather(gathered), receiver);
+    for (int i = 0; i < choice.count; ++i) {
+      scratch.noise_keys.push_back(range_noise_key(params_.seed, out.frame, k, i));
+    }
+  }
+  scratch.normals.resize(scratch.noise_keys.size());
+  if (range_noise_sigma_m(receiver) != 0.0) standard_normals(scratch.noise_keys, scratch.normals);
+
+  const double* normals = scratch.normals.data();
+  for (std::size_t j = 0; j < count; ++j) {
+    const int k = begin + static_cast<int>(j);
+    PulseReturns& returns = out.returns[static_cast<std::size_t>(k)];
+    if (out.active[static_cast<std::size_t>(k)] == 0) {
       returns = PulseReturns{};
       returns.counter1 =
           reference_counter(scan.reference_counts, receiver, params_.seed, out.frame, k);
       returns.counter2 = receiver.counter.timeout_counts;
       continue;
     }
-    returns = select_returns(out.candidates[index].gather(gathered), receiver, params_.seed,
-                             out.frame, k);
+    returns = record_returns(scratch.choices[j], normals, receiver);
+    normals += scratch.choices[j].count;
   }
 }
 
-void FrameSimulator::receive(FrameResult& out) const {
+void FrameSimulator::receive(FrameResult& out, std::span<const PulseCandidates> candidates) const {
+  if (candidates.size() != out.returns.size()) {
+    throw Error("engine: the candidates do not match the frame's pulses");
+  }
   tbb::parallel_for(tbb::blocked_range<int>(0, params_.scan.pulses_per_frame(), 1024),
                     [&](const auto& range) {
                       const FlushDenormalsToZero ftz;
-                      receive_range(out, range.begin(), range.end());
+                      const auto first = static_cast<std::size_t>(range.begin());
+                      receive_range(out, candidates.subspan(first, range.size()), range.begin(),
+                                    range.end(), scratch_.local());
                     });
 }
 
@@ -85,13 +106,21 @@ void FrameSimulator::simulate(std::int64_t frame, const PoseSource& poses, Frame
       tbb::blocked_range<int>(0, params_.scan.lines_per_frame, kLinesPerTask),
       [&](const auto& lines) {
         const FlushDenormalsToZero ftz;
+        Scratch& scratch = scratch_.local();
+        std::vector<PulseCandidates>& candidates = scratch.candidates;
+        candidates.resize(static_cast<std::size_t>(kLinesPerTask * fibers));
         for (int first = lines.begin(); first < lines.end(); first += kLinesPerTask) {
           const int last = std::min(lines.end(), first + kLinesPerTask);
           ray_builder_.build_lines(out.sweep, poses, first, last, out.pulses, out.rays, out.active);
-          const auto begin = static_cast<unsigned>(first * fibers);
-          const auto end = static_cast<unsigned>(last * fibers);
-          tracer_.trace_range(out.rays, out.active, out.candidates, begin, end);
-          receive_range(out, static_cast<int>(begin), static_cast<int>(end));
+          const auto begin = static_cast<std::size_t>(first * fibers);
+          const auto count = static_cast<std::size_t>((last - first) * fibers);
+          const std::span<PulseCandidates> block(candidates.data(), count);
+          // Ray ids are block-relative: the block's rays, flags and candidates start at 0.
+          tracer_.trace_range(std::span<const PulseRay>(out.rays).subspan(begin, count),
+                              std::span<const std::uint8_t>(out.active).subspan(begin, count),
+                              block, 0, static_cast<unsigned>(count));
+          receive_range(out, block, static_cast<int>(begin), static_cast<int>(begin + count),
+                        scratch);
         }
       },
       tbb::simple_partitioner{});

@@ -4,7 +4,10 @@
 // and its index, so frames can be simulated in any order on any thread with the same bytes out.
 // Set up once (may allocate, may throw); simulate() reuses the caller's FrameResult buffers, so a
 // worker that keeps one FrameResult allocates nothing per frame after the first.
+#include <tbb/enumerable_thread_specific.h>
+
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "engine/frame_tracer.hpp"
@@ -22,10 +25,9 @@ struct FrameResult {
   std::int64_t frame = 0;
   int buffer = 0;  // the slot of the flight pipeline's pool holding it (0..frames in flight − 1)
   FrameSweep sweep;
-  std::vector<Pulse> pulses;                // the scan pattern, firing order
-  std::vector<PulseRay> rays;               // the central ray of each pulse (local ENU)
-  std::vector<std::uint8_t> active;         // 0 for the reference fiber
-  std::vector<PulseCandidates> candidates;  // what the trace found
+  std::vector<Pulse> pulses;         // the scan pattern, firing order
+  std::vector<PulseRay> rays;        // the central ray of each pulse (local ENU)
+  std::vector<std::uint8_t> active;  // 0 for the reference fiber
   // What the receiver recorded. For the reference fiber (inactive) count is 0 and counter1 holds
   // the reference range counter of SENSOR-SPEC §8.
   std::vector<PulseReturns> returns;
@@ -45,13 +47,15 @@ class FrameSimulator {
   FrameSimulator(const FrameSimulatorParams& params, const EmbreeScene& scene, TraceApi api);
 
   // Pattern, rays, trace and the receiver post-pass for one frame, in parallel over blocks of
-  // lines; the same result as build_rays, a trace and receive in turn.
+  // lines; the same result as build_rays, a trace and receive in turn. A block's candidates live
+  // only in its worker's scratch buffer, between its trace and its receiver pass.
   void simulate(std::int64_t frame, const PoseSource& poses, FrameResult& out) const;
   // The pattern and rays alone (no trace): what `trace-only` benchmarks and the brute-force
   // reference start from.
   void build_rays(std::int64_t frame, const PoseSource& poses, FrameResult& out) const;
-  // The receiver post-pass over out.candidates (after a trace by any tracer).
-  void receive(FrameResult& out) const;
+  // The receiver post-pass over a whole frame's candidates, one per pulse of out (after a trace
+  // of out.rays by any tracer).
+  void receive(FrameResult& out, std::span<const PulseCandidates> candidates) const;
 
   [[nodiscard]] const FrameSimulatorParams& params() const { return params_; }
   [[nodiscard]] const FrameTracer& tracer() const { return tracer_; }
@@ -59,11 +63,24 @@ class FrameSimulator {
  private:
   // Sizes out's buffers for the frame and sets its index and sweep.
   void prepare(std::int64_t frame, const PoseSource& poses, FrameResult& out) const;
-  void receive_range(FrameResult& out, int begin, int end) const;
+  // A worker's buffers, reused block after block.
+  struct Scratch {
+    std::vector<PulseCandidates> candidates;  // the block's, between its trace and receiver pass
+    std::vector<ReturnChoice> choices;        // by pulse of the block
+    std::vector<RandomKey> noise_keys;        // of the chosen returns, in pulse order
+    std::vector<double> normals;              // their standard normals
+  };
+
+  // Returns of pulses [begin, end) of out; candidates[k − begin] belongs to pulse k. Selects the
+  // returns of every pulse first, then draws all their range-noise normals in one batch, then
+  // records noise and counters: the same bytes as select_returns pulse by pulse.
+  void receive_range(FrameResult& out, std::span<const PulseCandidates> candidates, int begin,
+                     int end, Scratch& scratch) const;
 
   FrameSimulatorParams params_;
   FrameRayBuilder ray_builder_;
   FrameTracer tracer_;
+  mutable tbb::enumerable_thread_specific<Scratch> scratch_;
 };
 
 }  // namespace owsim

@@ -46,8 +46,9 @@ bool stronger(const Candidate& a, const Candidate& b) {
   return nearer(a, b);
 }
 
-double noisy_range_m(double range_m, double sigma_m, const RandomKey& key) {
-  return sigma_m == 0.0 ? range_m : range_m + sigma_m * standard_normal(key);
+// The range plus σ times a standard normal (σ = 0: the range itself, the normal unread).
+double noisy_range_m(double range_m, double sigma_m, double normal) {
+  return sigma_m == 0.0 ? range_m : range_m + sigma_m * normal;
 }
 
 }  // namespace
@@ -84,49 +85,61 @@ double range_noise_sigma_m(const ReceiverParams& p) {
                                      : p.range_noise_sigma_m;
 }
 
-PulseReturns select_returns(std::span<Candidate> candidates, const ReceiverParams& p,
-                            std::uint64_t seed, std::int64_t frame, int pulse) {
-  PulseReturns out;
-  out.counter1 = out.counter2 = p.counter.timeout_counts;
-
+ReturnChoice choose_returns(std::span<Candidate> candidates, const ReceiverParams& p) {
+  ReturnChoice out;
   // SENSOR-SPEC §7 detection: ξ_rx/ξ_tx ≥ threshold (NaN energies and ranges never register).
-  const auto detected_end = std::partition(
-      candidates.begin(), candidates.end(),
-      [&](const Candidate& c) { return c.energy_rel >= p.threshold && std::isfinite(c.range_m); });
+  const auto registers = [&](const Candidate& c) {
+    return c.energy_rel >= p.threshold && std::isfinite(c.range_m);
+  };
+  // Most pulses meet one surface (or none): no sorting to do.
+  if (candidates.size() <= 1) {
+    if (!candidates.empty() && registers(candidates.front()))
+      out.chosen[out.count++] = candidates.front();
+    return out;
+  }
+  const auto detected_end = std::partition(candidates.begin(), candidates.end(), registers);
   const std::span<Candidate> detected(candidates.begin(), detected_end);
   if (detected.empty()) return out;
 
   // SENSOR-SPEC §7 pinned return selection.
-  const Candidate* chosen[2] = {nullptr, nullptr};
   if (p.rule == ReturnRule::strongest) {
-    chosen[0] = &*std::min_element(detected.begin(), detected.end(), stronger);
-  } else {
-    std::sort(detected.begin(), detected.end(), nearer);
-    chosen[0] = &detected.front();
-    for (const Candidate& c : detected.subspan(1)) {
-      if (c.range_m >= detected.front().range_m + p.min_return_separation_m) {
-        chosen[1] = &c;
-        break;
-      }
+    out.chosen[out.count++] = *std::min_element(detected.begin(), detected.end(), stronger);
+    return out;
+  }
+  std::sort(detected.begin(), detected.end(), nearer);
+  out.chosen[out.count++] = detected.front();
+  for (const Candidate& c : detected.subspan(1)) {
+    if (c.range_m >= detected.front().range_m + p.min_return_separation_m) {
+      out.chosen[out.count++] = c;
+      break;
     }
   }
+  return out;
+}
 
+RandomKey range_noise_key(std::uint64_t seed, std::int64_t frame, int pulse, int i) {
+  return {seed, frame, pulse,
+          i == 0 ? RandomPurpose::range_noise_first : RandomPurpose::range_noise_second};
+}
+
+PulseReturns record_returns(const ReturnChoice& choice, const double* normals,
+                            const ReceiverParams& p) {
+  PulseReturns out;
+  out.counter1 = out.counter2 = p.counter.timeout_counts;
   // SENSOR-SPEC §1 noise and counter; a counter at the timeout is no return.
   const double sigma = range_noise_sigma_m(p);
-  constexpr RandomPurpose kPurpose[2] = {RandomPurpose::range_noise_first,
-                                         RandomPurpose::range_noise_second};
-  for (int i = 0; i < 2 && chosen[i] != nullptr; ++i) {
-    const Candidate& c = *chosen[i];
-    const double range = noisy_range_m(c.range_m, sigma, {seed, frame, pulse, kPurpose[i]});
+  for (int i = 0; i < choice.count; ++i) {
+    const Candidate& c = choice.chosen[i];
+    const double range = noisy_range_m(c.range_m, sigma, normals[i]);
     const std::uint16_t counter = counter_from_range(range, p.counter);
     if (counter >= p.counter.timeout_counts) continue;
     out.returns[out.count++] = Return{.range_m = std::max(range, 0.0),
-                                      .counter = counter,
                                       .energy_rel = c.energy_rel,
                                       .incidence_deg = c.incidence_deg,
+                                      .true_range_m = c.range_m,
                                       .object_index = c.object_index,
-                                      .surface = c.surface,
-                                      .true_range_m = c.range_m};
+                                      .counter = counter,
+                                      .surface = c.surface};
   }
   if (out.count == 2 && out.returns[1].range_m < out.returns[0].range_m) {
     std::swap(out.returns[0], out.returns[1]);
@@ -136,12 +149,26 @@ PulseReturns select_returns(std::span<Candidate> candidates, const ReceiverParam
   return out;
 }
 
+PulseReturns select_returns(std::span<Candidate> candidates, const ReceiverParams& p,
+                            std::uint64_t seed, std::int64_t frame, int pulse) {
+  const ReturnChoice choice = choose_returns(candidates, p);
+  double normals[2] = {0.0, 0.0};
+  if (range_noise_sigma_m(p) != 0.0) {
+    for (int i = 0; i < choice.count; ++i) {
+      normals[i] = standard_normal(range_noise_key(seed, frame, pulse, i));
+    }
+  }
+  return record_returns(choice, normals, p);
+}
+
 std::uint16_t reference_counter(std::uint16_t reference_counts, const ReceiverParams& p,
                                 std::uint64_t seed, std::int64_t frame, int pulse) {
-  const double range =
-      noisy_range_m(range_from_counter(reference_counts, p.counter), range_noise_sigma_m(p),
-                    {seed, frame, pulse, RandomPurpose::range_noise_reference});
-  return counter_from_range(range, p.counter);
+  const double sigma = range_noise_sigma_m(p);
+  const double normal =
+      sigma == 0.0 ? 0.0
+                   : standard_normal({seed, frame, pulse, RandomPurpose::range_noise_reference});
+  return counter_from_range(
+      noisy_range_m(range_from_counter(reference_counts, p.counter), sigma, normal), p.counter);
 }
 
 double max_detection_range_m(double wire_diameter_m, double reflectivity, const ReceiverParams& p) {

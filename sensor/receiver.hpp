@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <span>
 
+#include "geometry/keyed_random.hpp"
 #include "sensor/atmosphere.hpp"
 #include "sensor/beam.hpp"
 #include "sensor/range_counter.hpp"
@@ -62,27 +63,47 @@ struct Candidate {
   std::uint8_t surface = 0;
 };
 
+// Fields ordered largest first: a frame holds one PulseReturns a pulse, written by the receiver
+// and read by every output, so its 88 bytes (not 112 with padding) are memory traffic saved.
 struct Return {
   double range_m = 0.0;  // after noise
-  std::uint16_t counter = 0;
   double energy_rel = 0.0;
   double incidence_deg = 0.0;
-  std::uint32_t object_index = 0;
-  std::uint8_t surface = 0;
   double true_range_m = 0.0;
+  std::uint32_t object_index = 0;
+  std::uint16_t counter = 0;
+  std::uint8_t surface = 0;
 };
 
 struct PulseReturns {
-  int count = 0;  // 0, 1 or 2 valid entries in returns
-  Return returns[2];
+  int count = 0;                                                 // valid entries in returns: 0..2
   std::uint16_t counter1 = RangeCounterParams{}.timeout_counts;  // the timeout when absent
   std::uint16_t counter2 = RangeCounterParams{}.timeout_counts;  // the timeout when absent
+  Return returns[2];
 };
 
 // Threshold, selection, noise and counters for one pulse  (SENSOR-SPEC §1, §7 pinned return
-// selection). Reorders `candidates` in place; allocation-free.
+// selection). Reorders `candidates` in place; allocation-free. The same as choose_returns, the
+// range-noise normals of its choices and record_returns in turn.
 [[nodiscard]] PulseReturns select_returns(std::span<Candidate> candidates, const ReceiverParams& p,
                                           std::uint64_t seed, std::int64_t frame, int pulse);
+
+// The candidates a pulse's returns come from, before noise: chosen[0] draws the range noise keyed
+// range_noise_first, chosen[1] range_noise_second.
+struct ReturnChoice {
+  int count = 0;  // 0, 1 or 2
+  Candidate chosen[2];
+};
+
+// Detection threshold and return selection  (SENSOR-SPEC §7 pinned return selection). Reorders
+// `candidates` in place.
+[[nodiscard]] ReturnChoice choose_returns(std::span<Candidate> candidates, const ReceiverParams& p);
+// The noise key of a choice's return i (0 or 1) of pulse `pulse`  (SENSOR-SPEC §1)
+[[nodiscard]] RandomKey range_noise_key(std::uint64_t seed, std::int64_t frame, int pulse, int i);
+// Range noise and counters of a choice, given the standard normal of each chosen return
+// (normals[i] for chosen[i]; unread when σ = 0)  (SENSOR-SPEC §1)
+[[nodiscard]] PulseReturns record_returns(const ReturnChoice& choice, const double* normals,
+                                          const ReceiverParams& p);
 
 // The reference fiber's counter: reference_counts·Δ plus the same range noise, keyed
 // range_noise_reference  (SENSOR-SPEC §8)
