@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "geometry/exact_round.hpp"
+
 namespace owsim {
 
 double range_per_count_m(const RangeCounterParams& p) {
@@ -17,7 +19,7 @@ double timeout_range_m(const RangeCounterParams& p) {
 }
 
 std::uint16_t counter_from_range(double range_m, const RangeCounterParams& p) {
-  const double counts = std::round(range_m / range_per_count_m(p));
+  const double counts = round_half_away(range_m / range_per_count_m(p));
   if (!(counts < p.timeout_counts)) return p.timeout_counts;  // also catches NaN
   if (counts <= 0.0) return 0;
   return static_cast<std::uint16_t>(counts);

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "geometry/error.hpp"
+#include "geometry/exact_round.hpp"
 #include "geometry/keyed_random.hpp"
 #include "sensor/fiber_layout.hpp"
 
@@ -19,7 +20,7 @@ double centre_envelope_deg(const ScanParams& p) {
 std::uint16_t time_tag(double t_s, double ticks_per_s, std::uint32_t modulus) {
   if (!std::isfinite(t_s)) throw Error("time tag: pulse time is not finite");
   const double ticks = t_s * ticks_per_s;
-  const double whole = std::floor(ticks + std::abs(ticks) * 1e-14);
+  const double whole = round_down(ticks + std::abs(ticks) * 1e-14);
   // The common case in integers, the same value: both tag ranges are powers of two, so the
   // two's-complement mask is the floored modulo, negative tick counts included.
   if (std::abs(whole) < 0x1p62 && (modulus & (modulus - 1)) == 0) {

@@ -1,0 +1,27 @@
+#pragma once
+// std::round and std::floor without the library call: the baseline x86-64 target (SSE2) has no
+// rounding instruction, so std::round and std::lround are calls into libm — several nanoseconds
+// each on paths that run once a pulse (range counter, encoder word, time tags).
+#include <cmath>
+#include <cstdint>
+
+namespace owsim {
+
+// The integer nearest x, halves away from zero: std::round(x) bit for bit, sign of zero and
+// NaN included. |x| ≥ 2⁵² is already an integer (or inf/NaN) and comes back as it is.
+[[nodiscard]] inline double round_half_away(double x) {
+  if (!(std::abs(x) < 0x1p52)) return x;
+  const auto truncated = static_cast<double>(static_cast<std::int64_t>(x));
+  const double fraction = x - truncated;  // exact
+  const double step = fraction >= 0.5 ? 1.0 : (fraction <= -0.5 ? -1.0 : 0.0);
+  return std::copysign(truncated + step, x);
+}
+
+// The largest integer ≤ x: std::floor(x) bit for bit, as round_half_away is std::round's.
+[[nodiscard]] inline double round_down(double x) {
+  if (!(std::abs(x) < 0x1p52)) return x;
+  const auto truncated = static_cast<double>(static_cast<std::int64_t>(x));
+  return std::copysign(x < truncated ? truncated - 1.0 : truncated, x);
+}
+
+}  // namespace owsim
