@@ -1,8 +1,6 @@
 #include "io/hellas_word.hpp"
 
-#include <string>
-
-#include "geometry/error.hpp"
+#include "io/word_field.hpp"
 #include "sensor/range_counter.hpp"
 
 namespace owsim {
@@ -17,21 +15,14 @@ constexpr int kMovDirBit = 13;
 constexpr int kBtBit = 12;
 constexpr std::uint32_t kCounterMask = 0xFFF;
 
-void require_width(unsigned value, unsigned max, const char* field) {
-  if (value > max) {
-    throw Error("HELLAS word: " + std::string(field) + " = " + std::to_string(value) +
-                " does not fit its field (max " + std::to_string(max) + ")");
-  }
-}
-
 std::uint32_t flag(bool value, int bit) { return static_cast<std::uint32_t>(value) << bit; }
 bool test(std::uint32_t bits, int bit) { return ((bits >> bit) & 1u) != 0; }
 
 }  // namespace
 
 std::uint32_t pack(const HellasWord& word) {
-  require_width(word.time_tag, kHellasTimeTagMax, "time tag");
-  require_width(word.counter, kCounterMax, "counter");
+  require_field_width("HELLAS", "time tag", word.time_tag, kHellasTimeTagMax);
+  require_field_width("HELLAS", "counter", word.counter, kCounterMax);
   return flag(word.select, kSelectBit) | flag(word.zt, kZtBit) |
          static_cast<std::uint32_t>(word.time_tag) << kTimeTagShift | flag(word.ain, kAinBit) |
          flag(word.ni, kNiBit) | flag(word.mov_dir, kMovDirBit) | flag(word.bt, kBtBit) |

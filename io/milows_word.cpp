@@ -1,8 +1,6 @@
 #include "io/milows_word.hpp"
 
-#include <string>
-
-#include "geometry/error.hpp"
+#include "io/word_field.hpp"
 #include "sensor/range_counter.hpp"
 
 namespace owsim {
@@ -20,23 +18,16 @@ constexpr int kTriggerShift = 12;
 constexpr std::uint64_t kCounterMask = 0xFFF;
 constexpr std::uint64_t kTwoBitMask = 0x3;
 
-void require_width(unsigned value, unsigned max, const char* field) {
-  if (value > max) {
-    throw Error("MilOWS word: " + std::string(field) + " = " + std::to_string(value) +
-                " does not fit its field (max " + std::to_string(max) + ")");
-  }
-}
-
 std::uint64_t flag(bool value, int bit) { return static_cast<std::uint64_t>(value) << bit; }
 bool test(std::uint64_t bits, int bit) { return ((bits >> bit) & 1u) != 0; }
 
 }  // namespace
 
 std::uint64_t pack(const MilowsWord& word) {
-  require_width(word.counter1, kCounterMax, "counter 1");
-  require_width(word.counter2, kCounterMax, "counter 2");
-  require_width(word.lut, kMilowsTwoBitMax, "LUT");
-  require_width(word.trigger, kMilowsTwoBitMax, "trigger");
+  require_field_width("MilOWS", "counter 1", word.counter1, kCounterMax);
+  require_field_width("MilOWS", "counter 2", word.counter2, kCounterMax);
+  require_field_width("MilOWS", "LUT", word.lut, kMilowsTwoBitMax);
+  require_field_width("MilOWS", "trigger", word.trigger, kMilowsTwoBitMax);
   const auto encoder_bits = static_cast<std::uint16_t>(word.encoder);
   return static_cast<std::uint64_t>(word.time_tag) << kTimeTagShift |
          static_cast<std::uint64_t>(encoder_bits) << kEncoderShift |
