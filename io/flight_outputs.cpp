@@ -253,6 +253,7 @@ void FlightOutputs::encode_frame(const FrameView& frame, const Pose& frame_start
   out.frame_start = frame_start;
   out.error = nullptr;
   try {
+    summary_.tally(frame.pulses, frame.returns, out.tally);
     if (words_) words_->encode(frame, out);
     if (points_csv_ || points_las_ || points_ply_) {
       frame_points(frame, *local_frame_, out.points);
@@ -278,7 +279,7 @@ void FlightOutputs::add_frame(const FrameView& frame, const FrameEncoding& encod
                 " given with the encoding of frame " + std::to_string(encoded.frame));
   }
   if (encoded.error) std::rethrow_exception(encoded.error);
-  summary_.add_frame(frame.frame, frame.pulses, frame.returns);
+  summary_.add_frame(frame.frame, encoded.tally);
   if (words_) words_->append(encoded);
   if (points_csv_) points_csv_->append(encoded.csv_rows, encoded.points.size());
   if (points_las_) points_las_->append(encoded.las);

@@ -43,29 +43,43 @@ void FlightSummary::restore(FlightSummaryCheckpoint from) {
   objects_ = std::move(from.objects);
 }
 
-void FlightSummary::add_frame(std::int64_t frame, std::span<const Pulse> pulses,
-                              std::span<const PulseReturns> returns) {
-  ++counts_.frames;
-  counts_.pulses += pulses.size();
+void FlightSummary::tally(std::span<const Pulse> pulses, std::span<const PulseReturns> returns,
+                          FrameTally& out) const {
+  out.pulses = pulses.size();
+  out.returns_by_class.fill(0);
+  out.second_returns = 0;
+  out.object_hits.clear();
   for (std::size_t k = 0; k < returns.size(); ++k) {
     const PulseReturns& pulse_returns = returns[k];
-    if (pulse_returns.count >= 2) ++counts_.second_returns;
+    if (pulse_returns.count >= 2) ++out.second_returns;
     for (int r = 0; r < pulse_returns.count; ++r) {
       const Return& ret = pulse_returns.returns[r];
-      ++counts_.returns_by_class[std::min<std::size_t>(ret.surface, 3)];
+      ++out.returns_by_class[std::min<std::size_t>(ret.surface, 3)];
       if (ret.object_index >= objects_.size()) continue;  // the ground
-      ObjectTruth& truth = objects_[ret.object_index];
-      ++truth.returns;
-      if (truth.last_frame_seen != frame) {
-        ++truth.frames_seen;
-        truth.last_frame_seen = frame;
-      }
-      if (!truth.first_seen_s) {
-        truth.first_seen_s = pulses[k].time_s;
-        truth.first_seen_range_m = ret.true_range_m;
-      }
-      truth.min_range_m = std::min(truth.min_range_m.value_or(ret.true_range_m), ret.true_range_m);
+      out.object_hits.push_back({ret.object_index, pulses[k].time_s, ret.true_range_m});
     }
+  }
+}
+
+void FlightSummary::add_frame(std::int64_t frame, const FrameTally& tally) {
+  ++counts_.frames;
+  counts_.pulses += tally.pulses;
+  counts_.second_returns += tally.second_returns;
+  for (std::size_t c = 0; c < tally.returns_by_class.size(); ++c) {
+    counts_.returns_by_class[c] += tally.returns_by_class[c];
+  }
+  for (const FrameTally::ObjectHit& hit : tally.object_hits) {
+    ObjectTruth& truth = objects_[hit.object];
+    ++truth.returns;
+    if (truth.last_frame_seen != frame) {
+      ++truth.frames_seen;
+      truth.last_frame_seen = frame;
+    }
+    if (!truth.first_seen_s) {
+      truth.first_seen_s = hit.time_s;
+      truth.first_seen_range_m = hit.true_range_m;
+    }
+    truth.min_range_m = std::min(truth.min_range_m.value_or(hit.true_range_m), hit.true_range_m);
   }
 }
 

@@ -45,14 +45,31 @@ struct FlightSummaryCheckpoint {
   friend bool operator==(const FlightSummaryCheckpoint&, const FlightSummaryCheckpoint&) = default;
 };
 
+// One frame's part of the summary, tallied on any thread (FlightSummary::tally) so that adding it
+// in frame order is a few additions. Reused frame after frame.
+struct FrameTally {
+  // A return on a scene object (not the ground), in pulse order.
+  struct ObjectHit {
+    std::uint32_t object = 0;
+    double time_s = 0.0;  // the pulse's
+    double true_range_m = 0.0;
+  };
+  std::uint64_t pulses = 0;
+  std::array<std::uint64_t, 4> returns_by_class{};
+  std::uint64_t second_returns = 0;
+  std::vector<ObjectHit> object_hits;
+};
+
 class FlightSummary {
  public:
   // One entry per scene object, in object-index order (conductors, then cylinders).
   explicit FlightSummary(const Scene& scene);
 
-  // Adds one frame's returns (frames must come in order).
-  void add_frame(std::int64_t frame, std::span<const Pulse> pulses,
-                 std::span<const PulseReturns> returns);
+  // One frame's returns tallied; thread-safe (const).
+  void tally(std::span<const Pulse> pulses, std::span<const PulseReturns> returns,
+             FrameTally& out) const;
+  // Adds one frame's tally (frames must come in order).
+  void add_frame(std::int64_t frame, const FrameTally& tally);
 
   [[nodiscard]] const std::vector<ObjectTruth>& objects() const { return objects_; }
   [[nodiscard]] std::uint64_t frames() const { return counts_.frames; }

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "io/flight_summary.hpp"
 #include "io/las_writer.hpp"
 #include "io/point_record.hpp"
 #include "sensor/mounting.hpp"
@@ -18,6 +19,7 @@ namespace owsim {
 struct FrameEncoding {
   std::int64_t frame = -1;  // the frame encoded; −1 before the first
   Pose frame_start;         // the aircraft's pose at the frame's first pulse
+  FrameTally tally;         // the frame's part of summary.json
   std::vector<PointRecord> points;
   std::vector<std::uint64_t> milows_words;  // flight.d64 of a MilOWS scenario
   std::vector<std::uint32_t> hellas_words;  // flight.hellas of a HELLAS scenario
