@@ -6,7 +6,6 @@
 #include <cmath>
 #include <cstdint>
 #include <numbers>
-#include <vector>
 
 #include "geometry/keyed_random.hpp"
 
@@ -30,20 +29,6 @@ void BM_StandardNormal(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 BENCHMARK(BM_StandardNormal);
-
-// The same draws in batches of 512 keys, as the receiver makes them for a block of pulses.
-void BM_StandardNormals(benchmark::State& state) {
-  std::vector<RandomKey> keys(512);
-  std::vector<double> normals(keys.size());
-  std::int64_t pulse = 0;
-  for (auto _ : state) {
-    for (RandomKey& key : keys) key = pulse_key(pulse++);
-    standard_normals(keys, normals);
-    benchmark::DoNotOptimize(normals.data());
-  }
-  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(keys.size()));
-}
-BENCHMARK(BM_StandardNormals);
 
 // FOR COMPARISON ONLY, not used by owsim: the previous standard_normal, Box–Muller on the two
 // 53-bit uniforms of the key's block, sqrt(−2 log u1) · cos(2π u2).

@@ -14,6 +14,16 @@ namespace {
 // candidates stay in the core's cache between the three steps).
 constexpr int kLinesPerTask = 4;
 
+// Asks for the cache lines of `items` ahead of the writes: the frame's arrays were last touched
+// frames ago, and a write to a line not in cache waits for it. The lines arrive while the block
+// is traced.
+template <typename Item>
+void prefetch_for_writing(std::span<Item> items) {
+  const auto* bytes = reinterpret_cast<const char*>(items.data());
+  const std::size_t size = items.size_bytes();
+  for (std::size_t offset = 0; offset < size; offset += 64) __builtin_prefetch(bytes + offset, 1);
+}
+
 }  // namespace
 
 FrameSimulator::FrameSimulator(const FrameSimulatorParams& params, const EmbreeScene& scene,
@@ -48,38 +58,22 @@ void FrameSimulator::build_rays(std::int64_t frame, const PoseSource& poses,
 }
 
 void FrameSimulator::receive_range(FrameResult& out, std::span<const PulseCandidates> candidates,
-                                   int begin, int end, Scratch& scratch) const {
+                                   int begin, int end) const {
   const ScanParams& scan = params_.scan;
   const ReceiverParams& receiver = params_.receiver;
-  const auto count = static_cast<std::size_t>(end - begin);
-  scratch.choices.resize(count);
-  scratch.noise_keys.clear();
   std::array<Candidate, PulseCandidates::kMaxWires + 1> gathered;
-  for (std::size_t j = 0; j < count; ++j) {
-    const int k = begin + static_cast<int>(j);
-    if (out.active[static_cast<std::size_t>(k)] == 0) continue;
-    const ReturnChoice& choice = scratch.choices[j] =
-        choose_returns(candidates[j].gather(gathered), receiver);
-    for (int i = 0; i < choice.count; ++i) {
-      scratch.noise_keys.push_back(range_noise_key(params_.seed, out.frame, k, i));
-    }
-  }
-  scratch.normals.resize(scratch.noise_keys.size());
-  if (range_noise_sigma_m(receiver) != 0.0) standard_normals(scratch.noise_keys, scratch.normals);
-
-  const double* normals = scratch.normals.data();
-  for (std::size_t j = 0; j < count; ++j) {
-    const int k = begin + static_cast<int>(j);
-    PulseReturns& returns = out.returns[static_cast<std::size_t>(k)];
-    if (out.active[static_cast<std::size_t>(k)] == 0) {
+  for (int k = begin; k < end; ++k) {
+    const auto index = static_cast<std::size_t>(k);
+    PulseReturns& returns = out.returns[index];
+    if (out.active[index] == 0) {
       returns = PulseReturns{};
       returns.counter1 =
           reference_counter(scan.reference_counts, receiver, params_.seed, out.frame, k);
       returns.counter2 = receiver.counter.timeout_counts;
       continue;
     }
-    returns = record_returns(scratch.choices[j], normals, receiver);
-    normals += scratch.choices[j].count;
+    select_returns(candidates[static_cast<std::size_t>(k - begin)].gather(gathered), receiver,
+                   params_.seed, out.frame, k, returns);
   }
 }
 
@@ -87,13 +81,12 @@ void FrameSimulator::receive(FrameResult& out, std::span<const PulseCandidates> 
   if (candidates.size() != out.returns.size()) {
     throw Error("engine: the candidates do not match the frame's pulses");
   }
-  tbb::parallel_for(tbb::blocked_range<int>(0, params_.scan.pulses_per_frame(), 1024),
-                    [&](const auto& range) {
-                      const FlushDenormalsToZero ftz;
-                      const auto first = static_cast<std::size_t>(range.begin());
-                      receive_range(out, candidates.subspan(first, range.size()), range.begin(),
-                                    range.end(), scratch_.local());
-                    });
+  tbb::parallel_for(
+      tbb::blocked_range<int>(0, params_.scan.pulses_per_frame(), 1024), [&](const auto& range) {
+        const FlushDenormalsToZero ftz;
+        const auto first = static_cast<std::size_t>(range.begin());
+        receive_range(out, candidates.subspan(first, range.size()), range.begin(), range.end());
+      });
 }
 
 void FrameSimulator::simulate(std::int64_t frame, const PoseSource& poses, FrameResult& out) const {
@@ -106,21 +99,20 @@ void FrameSimulator::simulate(std::int64_t frame, const PoseSource& poses, Frame
       tbb::blocked_range<int>(0, params_.scan.lines_per_frame, kLinesPerTask),
       [&](const auto& lines) {
         const FlushDenormalsToZero ftz;
-        Scratch& scratch = scratch_.local();
-        std::vector<PulseCandidates>& candidates = scratch.candidates;
+        std::vector<PulseCandidates>& candidates = block_candidates_.local();
         candidates.resize(static_cast<std::size_t>(kLinesPerTask * fibers));
         for (int first = lines.begin(); first < lines.end(); first += kLinesPerTask) {
           const int last = std::min(lines.end(), first + kLinesPerTask);
           ray_builder_.build_lines(out.sweep, poses, first, last, out.pulses, out.rays, out.active);
           const auto begin = static_cast<std::size_t>(first * fibers);
           const auto count = static_cast<std::size_t>((last - first) * fibers);
+          prefetch_for_writing(std::span<PulseReturns>(out.returns).subspan(begin, count));
           const std::span<PulseCandidates> block(candidates.data(), count);
           // Ray ids are block-relative: the block's rays, flags and candidates start at 0.
           tracer_.trace_range(std::span<const PulseRay>(out.rays).subspan(begin, count),
                               std::span<const std::uint8_t>(out.active).subspan(begin, count),
                               block, 0, static_cast<unsigned>(count));
-          receive_range(out, block, static_cast<int>(begin), static_cast<int>(begin + count),
-                        scratch);
+          receive_range(out, block, static_cast<int>(begin), static_cast<int>(begin + count));
         }
       },
       tbb::simple_partitioner{});

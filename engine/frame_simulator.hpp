@@ -63,24 +63,15 @@ class FrameSimulator {
  private:
   // Sizes out's buffers for the frame and sets its index and sweep.
   void prepare(std::int64_t frame, const PoseSource& poses, FrameResult& out) const;
-  // A worker's buffers, reused block after block.
-  struct Scratch {
-    std::vector<PulseCandidates> candidates;  // the block's, between its trace and receiver pass
-    std::vector<ReturnChoice> choices;        // by pulse of the block
-    std::vector<RandomKey> noise_keys;        // of the chosen returns, in pulse order
-    std::vector<double> normals;              // their standard normals
-  };
-
-  // Returns of pulses [begin, end) of out; candidates[k − begin] belongs to pulse k. Selects the
-  // returns of every pulse first, then draws all their range-noise normals in one batch, then
-  // records noise and counters: the same bytes as select_returns pulse by pulse.
+  // Returns of pulses [begin, end) of out; candidates[k − begin] belongs to pulse k.
   void receive_range(FrameResult& out, std::span<const PulseCandidates> candidates, int begin,
-                     int end, Scratch& scratch) const;
+                     int end) const;
 
   FrameSimulatorParams params_;
   FrameRayBuilder ray_builder_;
   FrameTracer tracer_;
-  mutable tbb::enumerable_thread_specific<Scratch> scratch_;
+  // Each worker's candidates for the block of lines it is tracing (simulate).
+  mutable tbb::enumerable_thread_specific<std::vector<PulseCandidates>> block_candidates_;
 };
 
 }  // namespace owsim

@@ -4,8 +4,6 @@
 #include <cmath>
 #include <numbers>
 
-#include "geometry/error.hpp"
-
 namespace owsim {
 namespace {
 
@@ -26,14 +24,6 @@ void mulhilo(std::uint32_t a, std::uint32_t b, std::uint32_t& hi, std::uint32_t&
 
 std::uint64_t join(std::uint32_t high, std::uint32_t low) {
   return (static_cast<std::uint64_t>(high) << 32) | low;
-}
-
-// One Philox4x32 round of the counter under the round's key.
-inline void philox_round(PhiloxBlock& counter, const std::array<std::uint32_t, 2>& key) {
-  std::uint32_t hi0, lo0, hi1, lo1;
-  mulhilo(kMultiplier0, counter[0], hi0, lo0);
-  mulhilo(kMultiplier1, counter[2], hi1, lo1);
-  counter = {hi1 ^ counter[1] ^ key[0], lo1, hi0 ^ counter[3] ^ key[1], lo0};
 }
 
 // The top 53 of 64 random bits as a double in [0, 1).
@@ -135,30 +125,14 @@ double normal_tail(double r, ExtraBlocks& blocks) {
   }
 }
 
-// The ziggurat draw of a key whose first block is `block` (random_block(key)).
-double standard_normal_from(PhiloxBlock block, const RandomKey& key) {
-  const Ziggurat& z = ziggurat();
-  ExtraBlocks extra(key);
-  for (;; block = extra.next()) {
-    // Words 0-1: the top 53 bits are the uniform, bits 0-7 the strip, bit 8 the sign.
-    const std::uint64_t bits = join(block[0], block[1]);
-    const auto strip = static_cast<std::size_t>(bits & 0xFFu);
-    const std::uint64_t sign = (bits & 0x100u) << 55;
-    const double x = unit_interval(bits) * z.edge[strip];
-    if (x < z.edge[strip + 1]) return signed_by(x, sign);
-    if (strip == 0) return signed_by(normal_tail(z.r, extra), sign);
-    // The wedge between the strip's inner rectangle and the curve.
-    const double y = z.height[strip] +
-                     unit_interval(block[2], block[3]) * (z.height[strip + 1] - z.height[strip]);
-    if (y < half_normal_density(x)) return signed_by(x, sign);
-  }
-}
-
 }  // namespace
 
 PhiloxBlock philox4x32_10(PhiloxBlock counter, std::array<std::uint32_t, 2> key) {
   for (int round = 0; round < 10; ++round) {
-    philox_round(counter, key);
+    std::uint32_t hi0, lo0, hi1, lo1;
+    mulhilo(kMultiplier0, counter[0], hi0, lo0);
+    mulhilo(kMultiplier1, counter[2], hi1, lo1);
+    counter = {hi1 ^ counter[1] ^ key[0], lo1, hi0 ^ counter[3] ^ key[1], lo0};
     key[0] += kWeyl0;
     key[1] += kWeyl1;
   }
@@ -183,47 +157,21 @@ double uniform01(const RandomKey& key) {
 double uniform_pm1(const RandomKey& key) { return 2.0 * uniform01(key) - 1.0; }
 
 double standard_normal(const RandomKey& key) {
-  return standard_normal_from(random_block(key), key);
-}
-
-void standard_normals(std::span<const RandomKey> keys, std::span<double> out) {
-  if (keys.size() != out.size()) throw Error("random: keys and normals differ in number");
-  // Philox on kLanes keys at once, word by word across the lanes (structure of arrays), so the
-  // compiler can do each round's 32×32→64 multiplies for several keys in one vector instruction.
-  constexpr std::size_t kLanes = 8;
-  std::size_t i = 0;
-  for (; i + kLanes <= keys.size(); i += kLanes) {
-    std::uint32_t c0[kLanes], c1[kLanes], c2[kLanes], c3[kLanes], k0[kLanes], k1[kLanes];
-    for (std::size_t lane = 0; lane < kLanes; ++lane) {
-      const PhiloxBlock counter = counter_of(keys[i + lane]);
-      const auto key = philox_key(keys[i + lane].seed);
-      c0[lane] = counter[0];
-      c1[lane] = counter[1];
-      c2[lane] = counter[2];
-      c3[lane] = counter[3];
-      k0[lane] = key[0];
-      k1[lane] = key[1];
-    }
-    for (int round = 0; round < 10; ++round) {
-      for (std::size_t lane = 0; lane < kLanes; ++lane) {
-        const std::uint64_t p0 = static_cast<std::uint64_t>(kMultiplier0) * c0[lane];
-        const std::uint64_t p1 = static_cast<std::uint64_t>(kMultiplier1) * c2[lane];
-        const auto hi0 = static_cast<std::uint32_t>(p0 >> 32), lo0 = static_cast<std::uint32_t>(p0);
-        const auto hi1 = static_cast<std::uint32_t>(p1 >> 32), lo1 = static_cast<std::uint32_t>(p1);
-        c0[lane] = hi1 ^ c1[lane] ^ k0[lane];
-        c1[lane] = lo1;
-        c2[lane] = hi0 ^ c3[lane] ^ k1[lane];
-        c3[lane] = lo0;
-        k0[lane] += kWeyl0;
-        k1[lane] += kWeyl1;
-      }
-    }
-    for (std::size_t lane = 0; lane < kLanes; ++lane) {
-      out[i + lane] =
-          standard_normal_from({c0[lane], c1[lane], c2[lane], c3[lane]}, keys[i + lane]);
-    }
+  const Ziggurat& z = ziggurat();
+  ExtraBlocks extra(key);
+  for (PhiloxBlock block = random_block(key);; block = extra.next()) {
+    // Words 0-1: the top 53 bits are the uniform, bits 0-7 the strip, bit 8 the sign.
+    const std::uint64_t bits = join(block[0], block[1]);
+    const auto strip = static_cast<std::size_t>(bits & 0xFFu);
+    const std::uint64_t sign = (bits & 0x100u) << 55;
+    const double x = unit_interval(bits) * z.edge[strip];
+    if (x < z.edge[strip + 1]) return signed_by(x, sign);
+    if (strip == 0) return signed_by(normal_tail(z.r, extra), sign);
+    // The wedge between the strip's inner rectangle and the curve.
+    const double y = z.height[strip] +
+                     unit_interval(block[2], block[3]) * (z.height[strip + 1] - z.height[strip]);
+    if (y < half_normal_density(x)) return signed_by(x, sign);
   }
-  for (; i < keys.size(); ++i) out[i] = standard_normal(keys[i]);
 }
 
 }  // namespace owsim

@@ -20,7 +20,6 @@
 // at most 4.4e-16.
 #include <array>
 #include <cstdint>
-#include <span>
 
 namespace owsim {
 
@@ -60,9 +59,5 @@ struct RandomKey {
 [[nodiscard]] double uniform_pm1(const RandomKey& key);
 // Standard normal N(0, 1), by the ziggurat above.
 [[nodiscard]] double standard_normal(const RandomKey& key);
-// standard_normal of every key, bit for bit: out[i] = standard_normal(keys[i]). The first blocks
-// of four keys at a time go through Philox's rounds together, so their multiplies overlap instead
-// of waiting on one another. Throws owsim::Error if the spans differ in size.
-void standard_normals(std::span<const RandomKey> keys, std::span<double> out);
 
 }  // namespace owsim

@@ -85,80 +85,62 @@ double range_noise_sigma_m(const ReceiverParams& p) {
                                      : p.range_noise_sigma_m;
 }
 
-ReturnChoice choose_returns(std::span<Candidate> candidates, const ReceiverParams& p) {
-  ReturnChoice out;
+void select_returns(std::span<Candidate> candidates, const ReceiverParams& p, std::uint64_t seed,
+                    std::int64_t frame, int pulse, PulseReturns& out) {
+  out.count = 0;
+  out.counter1 = out.counter2 = p.counter.timeout_counts;
+
   // SENSOR-SPEC §7 detection: ξ_rx/ξ_tx ≥ threshold (NaN energies and ranges never register).
   const auto registers = [&](const Candidate& c) {
     return c.energy_rel >= p.threshold && std::isfinite(c.range_m);
   };
-  // Most pulses meet one surface (or none): no sorting to do.
+  // SENSOR-SPEC §7 pinned return selection. Most pulses meet one surface or none: nothing to sort.
+  const Candidate* chosen[2] = {nullptr, nullptr};
   if (candidates.size() <= 1) {
-    if (!candidates.empty() && registers(candidates.front()))
-      out.chosen[out.count++] = candidates.front();
-    return out;
-  }
-  const auto detected_end = std::partition(candidates.begin(), candidates.end(), registers);
-  const std::span<Candidate> detected(candidates.begin(), detected_end);
-  if (detected.empty()) return out;
-
-  // SENSOR-SPEC §7 pinned return selection.
-  if (p.rule == ReturnRule::strongest) {
-    out.chosen[out.count++] = *std::min_element(detected.begin(), detected.end(), stronger);
-    return out;
-  }
-  std::sort(detected.begin(), detected.end(), nearer);
-  out.chosen[out.count++] = detected.front();
-  for (const Candidate& c : detected.subspan(1)) {
-    if (c.range_m >= detected.front().range_m + p.min_return_separation_m) {
-      out.chosen[out.count++] = c;
-      break;
+    if (candidates.empty() || !registers(candidates.front())) return;
+    chosen[0] = &candidates.front();
+  } else {
+    const std::span<Candidate> detected(
+        candidates.begin(), std::partition(candidates.begin(), candidates.end(), registers));
+    if (detected.empty()) return;
+    if (p.rule == ReturnRule::strongest) {
+      chosen[0] = &*std::min_element(detected.begin(), detected.end(), stronger);
+    } else {
+      std::sort(detected.begin(), detected.end(), nearer);
+      chosen[0] = &detected.front();
+      for (const Candidate& c : detected.subspan(1)) {
+        if (c.range_m >= detected.front().range_m + p.min_return_separation_m) {
+          chosen[1] = &c;
+          break;
+        }
+      }
     }
   }
-  return out;
-}
 
-RandomKey range_noise_key(std::uint64_t seed, std::int64_t frame, int pulse, int i) {
-  return {seed, frame, pulse,
-          i == 0 ? RandomPurpose::range_noise_first : RandomPurpose::range_noise_second};
-}
-
-PulseReturns record_returns(const ReturnChoice& choice, const double* normals,
-                            const ReceiverParams& p) {
-  PulseReturns out;
-  out.counter1 = out.counter2 = p.counter.timeout_counts;
   // SENSOR-SPEC §1 noise and counter; a counter at the timeout is no return.
   const double sigma = range_noise_sigma_m(p);
-  for (int i = 0; i < choice.count; ++i) {
-    const Candidate& c = choice.chosen[i];
-    const double range = noisy_range_m(c.range_m, sigma, normals[i]);
+  constexpr RandomPurpose kPurpose[2] = {RandomPurpose::range_noise_first,
+                                         RandomPurpose::range_noise_second};
+  for (int i = 0; i < 2 && chosen[i] != nullptr; ++i) {
+    const Candidate& c = *chosen[i];
+    const double normal = sigma == 0.0 ? 0.0 : standard_normal({seed, frame, pulse, kPurpose[i]});
+    const double range = noisy_range_m(c.range_m, sigma, normal);
     const std::uint16_t counter = counter_from_range(range, p.counter);
     if (counter >= p.counter.timeout_counts) continue;
-    out.returns[out.count++] = Return{.range_m = std::max(range, 0.0),
-                                      .energy_rel = c.energy_rel,
-                                      .incidence_deg = c.incidence_deg,
-                                      .true_range_m = c.range_m,
-                                      .object_index = c.object_index,
-                                      .counter = counter,
-                                      .surface = c.surface};
+    Return& r = out.returns[out.count++];
+    r.range_m = std::max(range, 0.0);
+    r.energy_rel = c.energy_rel;
+    r.incidence_deg = c.incidence_deg;
+    r.true_range_m = c.range_m;
+    r.object_index = c.object_index;
+    r.counter = counter;
+    r.surface = c.surface;
   }
   if (out.count == 2 && out.returns[1].range_m < out.returns[0].range_m) {
     std::swap(out.returns[0], out.returns[1]);
   }
   if (out.count >= 1) out.counter1 = out.returns[0].counter;
   if (out.count == 2) out.counter2 = out.returns[1].counter;
-  return out;
-}
-
-PulseReturns select_returns(std::span<Candidate> candidates, const ReceiverParams& p,
-                            std::uint64_t seed, std::int64_t frame, int pulse) {
-  const ReturnChoice choice = choose_returns(candidates, p);
-  double normals[2] = {0.0, 0.0};
-  if (range_noise_sigma_m(p) != 0.0) {
-    for (int i = 0; i < choice.count; ++i) {
-      normals[i] = standard_normal(range_noise_key(seed, frame, pulse, i));
-    }
-  }
-  return record_returns(choice, normals, p);
 }
 
 std::uint16_t reference_counter(std::uint16_t reference_counts, const ReceiverParams& p,

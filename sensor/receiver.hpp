@@ -20,7 +20,6 @@
 #include <cstdint>
 #include <span>
 
-#include "geometry/keyed_random.hpp"
 #include "sensor/atmosphere.hpp"
 #include "sensor/beam.hpp"
 #include "sensor/range_counter.hpp"
@@ -82,28 +81,19 @@ struct PulseReturns {
   Return returns[2];
 };
 
-// Threshold, selection, noise and counters for one pulse  (SENSOR-SPEC §1, §7 pinned return
-// selection). Reorders `candidates` in place; allocation-free. The same as choose_returns, the
-// range-noise normals of its choices and record_returns in turn.
-[[nodiscard]] PulseReturns select_returns(std::span<Candidate> candidates, const ReceiverParams& p,
-                                          std::uint64_t seed, std::int64_t frame, int pulse);
-
-// The candidates a pulse's returns come from, before noise: chosen[0] draws the range noise keyed
-// range_noise_first, chosen[1] range_noise_second.
-struct ReturnChoice {
-  int count = 0;  // 0, 1 or 2
-  Candidate chosen[2];
-};
-
-// Detection threshold and return selection  (SENSOR-SPEC §7 pinned return selection). Reorders
-// `candidates` in place.
-[[nodiscard]] ReturnChoice choose_returns(std::span<Candidate> candidates, const ReceiverParams& p);
-// The noise key of a choice's return i (0 or 1) of pulse `pulse`  (SENSOR-SPEC §1)
-[[nodiscard]] RandomKey range_noise_key(std::uint64_t seed, std::int64_t frame, int pulse, int i);
-// Range noise and counters of a choice, given the standard normal of each chosen return
-// (normals[i] for chosen[i]; unread when σ = 0)  (SENSOR-SPEC §1)
-[[nodiscard]] PulseReturns record_returns(const ReturnChoice& choice, const double* normals,
-                                          const ReceiverParams& p);
+// Threshold, selection, noise and counters for one pulse, written into `out`  (SENSOR-SPEC §1,
+// §7 pinned return selection). Reorders `candidates` in place; allocation-free. Only
+// out.returns[0 .. count) are written: the entries beyond are left as they were.
+void select_returns(std::span<Candidate> candidates, const ReceiverParams& p, std::uint64_t seed,
+                    std::int64_t frame, int pulse, PulseReturns& out);
+// The same, returned.
+[[nodiscard]] inline PulseReturns select_returns(std::span<Candidate> candidates,
+                                                 const ReceiverParams& p, std::uint64_t seed,
+                                                 std::int64_t frame, int pulse) {
+  PulseReturns out;
+  select_returns(candidates, p, seed, frame, pulse, out);
+  return out;
+}
 
 // The reference fiber's counter: reference_counts·Δ plus the same range noise, keyed
 // range_noise_reference  (SENSOR-SPEC §8)

@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <array>
-#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -18,7 +17,6 @@
 #include <utility>
 #include <vector>
 
-#include "geometry/error.hpp"
 #include "geometry/keyed_random.hpp"
 #include "python_oracle.hpp"
 
@@ -160,29 +158,6 @@ TEST(KeyedRandom, NormalIsAPureFunctionOfItsKey) {
   for (RandomPurpose purpose : kPurposes) {
     if (purpose != key.purpose) EXPECT_NE(standard_normal({42, 7, 1234, purpose}), z);
   }
-}
-
-// The batch draws each key's own normal, bit for bit, through wedge rejections and tail draws
-// (40,003 keys: ~600 wedge rejections and ~10 tails; not a multiple of the batch width, and keys
-// of mixed seeds, frames and purposes side by side).
-TEST(KeyedRandom, BatchNormalsEqualOneByOne) {
-  std::vector<RandomKey> keys;
-  for (std::int64_t pulse = 0; pulse < 40003; ++pulse) {
-    keys.push_back({static_cast<std::uint64_t>(9 + pulse % 3), 5 + pulse % 2, pulse,
-                    kPurposes[static_cast<std::size_t>(pulse) % kPurposes.size()]});
-  }
-  std::vector<double> batch(keys.size());
-  standard_normals(keys, batch);
-  int tails = 0;
-  for (std::size_t i = 0; i < keys.size(); ++i) {
-    ASSERT_EQ(std::bit_cast<std::uint64_t>(batch[i]),
-              std::bit_cast<std::uint64_t>(standard_normal(keys[i])))
-        << i;
-    if (std::abs(batch[i]) > 3.6541528853610088) ++tails;
-  }
-  EXPECT_GT(tails, 0);
-  std::vector<double> wrong_size(keys.size() - 1);
-  EXPECT_THROW(standard_normals(keys, wrong_size), Error);
 }
 
 // Draws N(0, 1) for `count` pulses of one frame.
