@@ -14,16 +14,6 @@ namespace {
 // candidates stay in the core's cache between the three steps).
 constexpr int kLinesPerTask = 4;
 
-// Asks for the cache lines of `items` ahead of the writes: the frame's arrays were last touched
-// frames ago, and a write to a line not in cache waits for it. The lines arrive while the block
-// is traced.
-template <typename Item>
-void prefetch_for_writing(std::span<Item> items) {
-  const auto* bytes = reinterpret_cast<const char*>(items.data());
-  const std::size_t size = items.size_bytes();
-  for (std::size_t offset = 0; offset < size; offset += 64) __builtin_prefetch(bytes + offset, 1);
-}
-
 }  // namespace
 
 FrameSimulator::FrameSimulator(const FrameSimulatorParams& params, const EmbreeScene& scene,
@@ -103,10 +93,9 @@ void FrameSimulator::simulate(std::int64_t frame, const PoseSource& poses, Frame
         candidates.resize(static_cast<std::size_t>(kLinesPerTask * fibers));
         for (int first = lines.begin(); first < lines.end(); first += kLinesPerTask) {
           const int last = std::min(lines.end(), first + kLinesPerTask);
-          ray_builder_.build_lines(out.sweep, poses, first, last, out.pulses, out.rays, out.active);
           const auto begin = static_cast<std::size_t>(first * fibers);
           const auto count = static_cast<std::size_t>((last - first) * fibers);
-          prefetch_for_writing(std::span<PulseReturns>(out.returns).subspan(begin, count));
+          ray_builder_.build_lines(out.sweep, poses, first, last, out.pulses, out.rays, out.active);
           const std::span<PulseCandidates> block(candidates.data(), count);
           // Ray ids are block-relative: the block's rays, flags and candidates start at 0.
           tracer_.trace_range(std::span<const PulseRay>(out.rays).subspan(begin, count),
