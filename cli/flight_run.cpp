@@ -203,8 +203,9 @@ void simulate_frames(const FrameSimulator& simulator, const FlightSetup& setup,
                      const FlightRange& range, int threads, FlightOutputs& outputs,
                      const std::function<void(std::int64_t)>& frame_done) {
   // Each frame is itself simulated in parallel, so one frame per thread keeps every core busy;
-  // more frames in flight only add their buffers (7.5 MB of candidates each) to the cache
-  // traffic: on the corridor 2 frames for 2 threads ran 1.2x faster than 4.
+  // more frames in flight only add their buffers (4.1 MB each on the corridor: pulses, rays and
+  // returns) to what competes with the scene for the cache. `owsim bench` on the corridor with 2
+  // threads: 14.6-15.1 M pulses/s with 2 frames in flight, 12.7-13.1 M with 4, 11.4-13.0 M with 1.
   const int frames_in_flight = std::max(2, threads);
   // One encoding per buffer of the pipeline: a frame is encoded where it is simulated, in the
   // parallel stage, and the in-order sink only appends its bytes.
