@@ -1,5 +1,6 @@
 #include "sensor/frame_rays.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -40,21 +41,28 @@ FrameRayBuilder::FrameRayBuilder(const ScanParams& scan, const Mount& mount)
       lever_arm_m_(mount.lever_arm_m) {
   validate(scan_);
   const int pulses = scan_.pulses_per_frame();
-  slots_.resize(static_cast<std::size_t>(scan_.fibers_per_line));
-  for (int index = 0; index < scan_.fibers_per_line; ++index) {
-    Slot& slot = slots_[static_cast<std::size_t>(index)];
-    slot.fiber = fiber_at_slot(scan_, index);
+  const auto fibers = static_cast<std::size_t>(scan_.fibers_per_line);
+  slots_.resize(fibers);
+  for (std::vector<double>* column : {&slot_rays_.a[0], &slot_rays_.a[1], &slot_rays_.b[0],
+                                      &slot_rays_.b[1], &slot_rays_.sin_alpha, &slot_rays_.s}) {
+    column->assign(fibers, 0.0);
+  }
+  for (std::size_t index = 0; index < fibers; ++index) {
+    Slot& slot = slots_[index];
+    const int i = static_cast<int>(index);
+    slot.fiber = fiber_at_slot(scan_, i);
     slot.reference = is_reference_fiber(scan_, slot.fiber);
     slot.alpha_deg = fiber_alpha_deg(scan_, slot.fiber);
     slot.sawtooth_deg = sawtooth_deg(scan_, slot.fiber);
+    slot_rays_.s[index] = static_cast<double>(i) / scan_.fibers_per_line;
     if (slot.reference) continue;
-    slot.sin_alpha = std::sin(slot.alpha_deg * kRadPerDeg);
-    slot.cos_alpha = std::cos(slot.alpha_deg * kRadPerDeg);
+    const double cos_alpha = std::cos(slot.alpha_deg * kRadPerDeg);
+    slot_rays_.sin_alpha[index] = std::sin(slot.alpha_deg * kRadPerDeg);
     for (const int direction : {1, -1}) {
-      const double offset_deg = direction * scan_.sweep_deg * index / pulses + slot.sawtooth_deg;
+      const double offset_deg = direction * scan_.sweep_deg * i / pulses + slot.sawtooth_deg;
       const std::size_t d = direction > 0 ? 0 : 1;
-      slot.sin_offset[d] = std::sin(offset_deg * kRadPerDeg);
-      slot.cos_offset[d] = std::cos(offset_deg * kRadPerDeg);
+      slot_rays_.a[d][index] = cos_alpha * std::cos(offset_deg * kRadPerDeg);
+      slot_rays_.b[d][index] = cos_alpha * std::sin(offset_deg * kRadPerDeg);
     }
   }
 }
@@ -76,7 +84,17 @@ void FrameRayBuilder::build_lines(const FrameSweep& sweep, const PoseSource& pos
   const std::size_t direction = sweep.direction > 0 ? 0 : 1;
   const int mov_dir = sweep.direction > 0 ? 0 : 1;
   const bool milows = scan_.model == SensorModel::milows;
-  const double slot_step = 1.0 / fibers;
+
+  // A line's rays: dir(s) = R(s) · (a·u + b·v + sin α·e_y) with R(s) = R0 + s·R1 + s²·R2, so
+  // dir(s) = a·U(s) + b·V(s) + sin α·W(s), U(s) = R(s)·u and so on: per line, the nine vectors
+  // Rj·u, Rj·v, Rj·e_y; per pulse, three quadratics and a weighted sum in each component, over
+  // arrays of the line's slots that the compiler vectorises.
+  constexpr int kMaxChunk = 64;
+  alignas(64) double dir[3][kMaxChunk], org[3][kMaxChunk];
+  const double* const a = slot_rays_.a[direction].data();
+  const double* const b = slot_rays_.b[direction].data();
+  const double* const sin_alpha = slot_rays_.sin_alpha.data();
+  const double* const blend = slot_rays_.s.data();
 
   SensorPlacement start =
       placement_at(poses, pulse_time_s(scan_, sweep.frame, line_begin * fibers));
@@ -92,42 +110,66 @@ void FrameRayBuilder::build_lines(const FrameSweep& sweep, const PoseSource& pos
                                             end.origin_enu_m);
     const double line_beta = mirror_beta_deg(scan_, sweep, first) * kRadPerDeg;
     const double sin_line = std::sin(line_beta), cos_line = std::cos(line_beta);
-
-    for (int index = 0; index < fibers; ++index) {
-      const Slot& slot = slots_[static_cast<std::size_t>(index)];
-      const int k = first + index;
-      const auto at = static_cast<std::size_t>(k);
-      Pulse& pulse = pulses[at];
-      pulse.index = k;
-      pulse.line = line;
-      pulse.slot = index;
-      pulse.fiber = slot.fiber;
-      pulse.reference = slot.reference;
-      pulse.time_s = pulse_time_s(scan_, sweep.frame, k);
-      pulse.alpha_deg = slot.alpha_deg;
-      pulse.mirror_beta_deg = mirror_beta_deg(scan_, sweep, k);
-      pulse.beta_deg = pulse.mirror_beta_deg + slot.sawtooth_deg;
-      pulse.encoder = milows ? encoder_from_mirror_beta(pulse.mirror_beta_deg) : 0;
-      pulse.frame_gate = k == frame_pulses - 1;
-      pulse.line_gate = index == fibers - 1;
-      pulse.mov_dir = mov_dir;
-      if (slot.reference) {
-        active[at] = 0;
-        rays[at] = PulseRay{};
-        continue;
+    // [j][component]: Rj·u, Rj·v, Rj·e_y and the origin's Oj.
+    double u_basis[3][3], v_basis[3][3], w_basis[3][3], o_basis[3][3];
+    const Eigen::Matrix3d* const r[3] = {&rotation.p0, &rotation.p1, &rotation.p2};
+    const Eigen::Vector3d* const o[3] = {&origin.p0, &origin.p1, &origin.p2};
+    for (int j = 0; j < 3; ++j) {
+      for (int c = 0; c < 3; ++c) {
+        const Eigen::Matrix3d& m = *r[j];
+        u_basis[j][c] = cos_line * m(c, 0) + sin_line * m(c, 2);
+        v_basis[j][c] = cos_line * m(c, 2) - sin_line * m(c, 0);
+        w_basis[j][c] = m(c, 1);
+        o_basis[j][c] = (*o[j])(c);
       }
-      // β = line β + offset; SRC ray (cos α cos β, sin α, cos α sin β)  (SENSOR-SPEC §4)
-      const double sin_beta =
-          sin_line * slot.cos_offset[direction] + cos_line * slot.sin_offset[direction];
-      const double cos_beta =
-          cos_line * slot.cos_offset[direction] - sin_line * slot.sin_offset[direction];
-      const Eigen::Vector3d src(slot.cos_alpha * cos_beta, slot.sin_alpha,
-                                slot.cos_alpha * sin_beta);
-      const double s = index * slot_step;
-      const Eigen::Vector3d dir =
-          rotation.p0 * src + s * (rotation.p1 * src + s * (rotation.p2 * src));
-      active[at] = 1;
-      rays[at] = PulseRay{origin.p0 + s * (origin.p1 + s * origin.p2), dir / dir.norm()};
+    }
+
+    for (int chunk = 0; chunk < fibers; chunk += kMaxChunk) {
+      const int n = std::min(kMaxChunk, fibers - chunk);
+      for (int c = 0; c < 3; ++c) {
+        const double u0 = u_basis[0][c], u1 = u_basis[1][c], u2 = u_basis[2][c];
+        const double v0 = v_basis[0][c], v1 = v_basis[1][c], v2 = v_basis[2][c];
+        const double w0 = w_basis[0][c], w1 = w_basis[1][c], w2 = w_basis[2][c];
+        const double o0 = o_basis[0][c], o1 = o_basis[1][c], o2 = o_basis[2][c];
+        for (int i = 0; i < n; ++i) {
+          const double s = blend[chunk + i];
+          dir[c][i] = a[chunk + i] * (u0 + s * (u1 + s * u2)) +
+                      b[chunk + i] * (v0 + s * (v1 + s * v2)) +
+                      sin_alpha[chunk + i] * (w0 + s * (w1 + s * w2));
+          org[c][i] = o0 + s * (o1 + s * o2);
+        }
+      }
+      for (int i = 0; i < n; ++i) {
+        const int index = chunk + i;
+        const Slot& slot = slots_[static_cast<std::size_t>(index)];
+        const int k = first + index;
+        const auto at = static_cast<std::size_t>(k);
+        Pulse& pulse = pulses[at];
+        pulse.index = k;
+        pulse.line = line;
+        pulse.slot = index;
+        pulse.fiber = slot.fiber;
+        pulse.reference = slot.reference;
+        pulse.time_s = pulse_time_s(scan_, sweep.frame, k);
+        pulse.alpha_deg = slot.alpha_deg;
+        pulse.mirror_beta_deg = mirror_beta_deg(scan_, sweep, k);
+        pulse.beta_deg = pulse.mirror_beta_deg + slot.sawtooth_deg;
+        pulse.encoder = milows ? encoder_from_mirror_beta(pulse.mirror_beta_deg) : 0;
+        pulse.frame_gate = k == frame_pulses - 1;
+        pulse.line_gate = index == fibers - 1;
+        pulse.mov_dir = mov_dir;
+        if (slot.reference) {
+          active[at] = 0;
+          rays[at] = PulseRay{};
+          continue;
+        }
+        const double inverse_norm =
+            1.0 / std::sqrt(dir[0][i] * dir[0][i] + dir[1][i] * dir[1][i] + dir[2][i] * dir[2][i]);
+        active[at] = 1;
+        rays[at] = PulseRay{Eigen::Vector3d(org[0][i], org[1][i], org[2][i]),
+                            Eigen::Vector3d(dir[0][i] * inverse_norm, dir[1][i] * inverse_norm,
+                                            dir[2][i] * inverse_norm)};
+      }
     }
     start = end;
   }

@@ -16,8 +16,10 @@
 // 7e-9 rad on the real recorded flight, 4e-9 rad through a 90°/s turn with 141°/s roll swings;
 // the test holds them to 1e-7 rad and 1e-6 m (0.1 mm at the 1.2 km timeout range, 1e-4 of the
 // beam's 1 mrad divergence). Slots 0 and F/2 get the exact placement, to rounding.
-// β of each pulse: sin and cos by angle addition from the line's first mirror β and the slot's
-// offset (mirror advance within the line + β_FC), exact to a few ulp.
+// β of each pulse: by angle addition from the line's first mirror β and the slot's offset (mirror
+// advance within the line + β_FC), exact to a few ulp. Written as a·u + b·v + sin α·e_y (see
+// SlotRays), the blended rotation is applied per line to u, v and e_y, and the per-pulse work is
+// three quadratics and a weighted sum per component over arrays the compiler vectorises.
 // Thread-safe (const); allocation-free after construction.
 #include <cstdint>
 #include <span>
@@ -53,9 +55,13 @@ class FrameRayBuilder {
     bool reference = false;
     double alpha_deg = 0;
     double sawtooth_deg = 0;
-    double sin_alpha = 0, cos_alpha = 0;
-    // sin and cos of the ray β's offset from the line's first mirror β, for direction +1 and −1
-    double sin_offset[2] = {0, 0}, cos_offset[2] = {0, 0};
+  };
+  // The SRC ray of every slot as a·u + b·v + sin α·e_y, where u = (cos β_L, 0, sin β_L) and
+  // v = (−sin β_L, 0, cos β_L) depend only on the line's first mirror β_L: a = cos α cos δ,
+  // b = cos α sin δ, δ the slot's offset from β_L (by direction +1 / −1, index 0 / 1). Arrays by
+  // slot, so the per-pulse arithmetic runs over plain arrays of doubles.
+  struct SlotRays {
+    std::vector<double> a[2], b[2], sin_alpha, s;  // s = slot / F, the blend parameter
   };
 
   [[nodiscard]] SensorPlacement placement_at(const PoseSource& poses, double time_s) const;
@@ -64,6 +70,7 @@ class FrameRayBuilder {
   Eigen::Matrix3d body_from_src_;  // R_mount · R_model
   Eigen::Vector3d lever_arm_m_;
   std::vector<Slot> slots_;
+  SlotRays slot_rays_;
 };
 
 }  // namespace owsim
