@@ -6,6 +6,13 @@ function(owsim_set_warnings target)
                          -Wno-sign-conversion)
 endfunction()
 
+# Code generation for owsim's own code: no errno from the math functions (nothing reads it), so
+# sqrt is one instruction and loops that take square roots vectorise. Results are unchanged: the
+# functions return the same correctly rounded values either way.
+function(owsim_set_codegen target)
+  target_compile_options(${target} PRIVATE -fno-math-errno)
+endfunction()
+
 function(owsim_add_module name)
   cmake_parse_arguments(ARG "" "" "PUBLIC_DEPS;PRIVATE_DEPS" ${ARGN})
   file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/${name}/*.cpp)
@@ -18,6 +25,7 @@ function(owsim_add_module name)
     $<INSTALL_INTERFACE:include/owsim>)
   target_link_libraries(owsim_${name} PUBLIC ${ARG_PUBLIC_DEPS} PRIVATE ${ARG_PRIVATE_DEPS})
   owsim_set_warnings(owsim_${name})
+  owsim_set_codegen(owsim_${name})
   if(OWSIM_LTO_FLAGS)
     target_compile_options(owsim_${name} PRIVATE ${OWSIM_LTO_FLAGS} -ffat-lto-objects)
   endif()
