@@ -44,7 +44,8 @@ FrameRayBuilder::FrameRayBuilder(const ScanParams& scan, const Mount& mount)
   const auto fibers = static_cast<std::size_t>(scan_.fibers_per_line);
   slots_.resize(fibers);
   for (std::vector<double>* column : {&slot_rays_.a[0], &slot_rays_.a[1], &slot_rays_.b[0],
-                                      &slot_rays_.b[1], &slot_rays_.sin_alpha, &slot_rays_.s}) {
+                                      &slot_rays_.b[1], &slot_rays_.sin_alpha, &slot_rays_.s,
+                                      &slot_rays_.slot}) {
     column->assign(fibers, 0.0);
   }
   for (std::size_t index = 0; index < fibers; ++index) {
@@ -55,6 +56,7 @@ FrameRayBuilder::FrameRayBuilder(const ScanParams& scan, const Mount& mount)
     slot.alpha_deg = fiber_alpha_deg(scan_, slot.fiber);
     slot.sawtooth_deg = sawtooth_deg(scan_, slot.fiber);
     slot_rays_.s[index] = static_cast<double>(i) / scan_.fibers_per_line;
+    slot_rays_.slot[index] = static_cast<double>(i);
     if (slot.reference) continue;
     const double cos_alpha = std::cos(slot.alpha_deg * kRadPerDeg);
     slot_rays_.sin_alpha[index] = std::sin(slot.alpha_deg * kRadPerDeg);
@@ -85,12 +87,22 @@ void FrameRayBuilder::build_lines(const FrameSweep& sweep, const PoseSource& pos
   const int mov_dir = sweep.direction > 0 ? 0 : 1;
   const bool milows = scan_.model == SensorModel::milows;
 
+  // Per-pulse time, mirror β and encoder word by pulse_time_s's, mirror_beta_deg's and
+  // encoder_from_mirror_beta's own expressions, over arrays. The pulse index k in the frame is
+  // the line's first plus the slot, exactly; the flight's index f·P + k is formed the same way
+  // where that gives pulse_time_s's double (below), else each pulse is timed by pulse_time_s.
+  const std::int64_t frame_first = sweep.frame * static_cast<std::int64_t>(frame_pulses);
+  const double signed_sweep_deg = sweep.direction * scan_.sweep_deg;
+  const auto frame_pulses_d = static_cast<double>(frame_pulses);
+  const double* const slot_d = slot_rays_.slot.data();
+
   // A line's rays: dir(s) = R(s) · (a·u + b·v + sin α·e_y) with R(s) = R0 + s·R1 + s²·R2, so
   // dir(s) = a·U(s) + b·V(s) + sin α·W(s), U(s) = R(s)·u and so on: per line, the nine vectors
   // Rj·u, Rj·v, Rj·e_y; per pulse, three quadratics and a weighted sum in each component, over
   // arrays of the line's slots that the compiler vectorises.
   constexpr int kMaxChunk = 64;
   alignas(64) double dir[3][kMaxChunk], org[3][kMaxChunk];
+  alignas(64) double time_s[kMaxChunk], mirror_beta[kMaxChunk], counts[kMaxChunk];
   const double* const a = slot_rays_.a[direction].data();
   const double* const b = slot_rays_.b[direction].data();
   const double* const sin_alpha = slot_rays_.sin_alpha.data();
@@ -102,6 +114,7 @@ void FrameRayBuilder::build_lines(const FrameSweep& sweep, const PoseSource& pos
     const int first = line * fibers;
     const SensorPlacement middle =
         placement_at(poses, pulse_time_s(scan_, sweep.frame, first + fibers / 2));
+    // pulse_time_s throws if the line's last index overflows int64; so every index below fits.
     const SensorPlacement end =
         placement_at(poses, pulse_time_s(scan_, sweep.frame, first + fibers));
     const Quadratic<Eigen::Matrix3d> rotation(start.enu_from_src, middle.enu_from_src,
@@ -123,9 +136,31 @@ void FrameRayBuilder::build_lines(const FrameSweep& sweep, const PoseSource& pos
         o_basis[j][c] = (*o[j])(c);
       }
     }
+    const std::int64_t line_index = frame_first + first;
+    const auto line_index_d = static_cast<double>(line_index);
+    // When the line's first index is a double exactly, the double sum with the slot is rounded
+    // once, as the conversion of the int64 index is: the same time.
+    const bool index_sum_exact =
+        std::abs(line_index_d) < 0x1p62 && static_cast<std::int64_t>(line_index_d) == line_index;
+    const auto first_d = static_cast<double>(first);
 
     for (int chunk = 0; chunk < fibers; chunk += kMaxChunk) {
       const int n = std::min(kMaxChunk, fibers - chunk);
+      const double* const k_slot = slot_d + chunk;
+      if (index_sum_exact) {
+        for (int i = 0; i < n; ++i) {
+          time_s[i] = scan_.start_s + (line_index_d + k_slot[i]) / scan_.prf_hz;
+        }
+      } else {
+        for (int i = 0; i < n; ++i) time_s[i] = pulse_time_s(scan_, sweep.frame, first + chunk + i);
+      }
+      for (int i = 0; i < n; ++i) {
+        mirror_beta[i] =
+            sweep.mirror_beta_start_deg + signed_sweep_deg * (first_d + k_slot[i]) / frame_pulses_d;
+      }
+      if (milows) {
+        for (int i = 0; i < n; ++i) counts[i] = motor_angle_deg(mirror_beta[i]) / kEncoderDegPerCount;
+      }
       for (int c = 0; c < 3; ++c) {
         const double u0 = u_basis[0][c], u1 = u_basis[1][c], u2 = u_basis[2][c];
         const double v0 = v_basis[0][c], v1 = v_basis[1][c], v2 = v_basis[2][c];
@@ -139,6 +174,12 @@ void FrameRayBuilder::build_lines(const FrameSweep& sweep, const PoseSource& pos
           org[c][i] = o0 + s * (o1 + s * o2);
         }
       }
+      // Unit directions (the reference slot's zero vector becomes NaN here and is not stored).
+      for (int i = 0; i < n; ++i) {
+        const double inverse_norm =
+            1.0 / std::sqrt(dir[0][i] * dir[0][i] + dir[1][i] * dir[1][i] + dir[2][i] * dir[2][i]);
+        for (int c = 0; c < 3; ++c) dir[c][i] *= inverse_norm;
+      }
       for (int i = 0; i < n; ++i) {
         const int index = chunk + i;
         const Slot& slot = slots_[static_cast<std::size_t>(index)];
@@ -150,11 +191,11 @@ void FrameRayBuilder::build_lines(const FrameSweep& sweep, const PoseSource& pos
         pulse.slot = index;
         pulse.fiber = slot.fiber;
         pulse.reference = slot.reference;
-        pulse.time_s = pulse_time_s(scan_, sweep.frame, k);
+        pulse.time_s = time_s[i];
         pulse.alpha_deg = slot.alpha_deg;
-        pulse.mirror_beta_deg = mirror_beta_deg(scan_, sweep, k);
-        pulse.beta_deg = pulse.mirror_beta_deg + slot.sawtooth_deg;
-        pulse.encoder = milows ? encoder_from_mirror_beta(pulse.mirror_beta_deg) : 0;
+        pulse.mirror_beta_deg = mirror_beta[i];
+        pulse.beta_deg = mirror_beta[i] + slot.sawtooth_deg;
+        pulse.encoder = milows ? encoder_word(counts[i]) : 0;
         pulse.frame_gate = k == frame_pulses - 1;
         pulse.line_gate = index == fibers - 1;
         pulse.mov_dir = mov_dir;
@@ -163,12 +204,9 @@ void FrameRayBuilder::build_lines(const FrameSweep& sweep, const PoseSource& pos
           rays[at] = PulseRay{};
           continue;
         }
-        const double inverse_norm =
-            1.0 / std::sqrt(dir[0][i] * dir[0][i] + dir[1][i] * dir[1][i] + dir[2][i] * dir[2][i]);
         active[at] = 1;
         rays[at] = PulseRay{Eigen::Vector3d(org[0][i], org[1][i], org[2][i]),
-                            Eigen::Vector3d(dir[0][i] * inverse_norm, dir[1][i] * inverse_norm,
-                                            dir[2][i] * inverse_norm)};
+                            Eigen::Vector3d(dir[0][i], dir[1][i], dir[2][i])};
       }
     }
     start = end;

@@ -61,7 +61,9 @@ class FrameRayBuilder {
   // b = cos α sin δ, δ the slot's offset from β_L (by direction +1 / −1, index 0 / 1). Arrays by
   // slot, so the per-pulse arithmetic runs over plain arrays of doubles.
   struct SlotRays {
-    std::vector<double> a[2], b[2], sin_alpha, s;  // s = slot / F, the blend parameter
+    std::vector<double> a[2], b[2], sin_alpha;
+    std::vector<double> s;     // slot / F, the blend parameter
+    std::vector<double> slot;  // the slot index as a double
   };
 
   [[nodiscard]] SensorPlacement placement_at(const PoseSource& poses, double time_s) const;

@@ -4,17 +4,6 @@
 
 namespace owsim {
 
-double motor_angle_deg(double mirror_beta_deg) {
-  // Estrin's scheme: four dependent multiply-adds instead of Horner's ten (it runs per pulse).
-  // Over ±30° it agrees with Horner's to 3e-14°, 5e-12 of an encoder count.
-  const auto& c = kMotorPolynomial;  // c[0] multiplies β^10
-  const double x = mirror_beta_deg, x2 = x * x, x4 = x2 * x2, x8 = x4 * x4;
-  const double low = (c[10] + c[9] * x) + (c[8] + c[7] * x) * x2 +
-                     ((c[6] + c[5] * x) + (c[4] + c[3] * x) * x2) * x4;
-  const double high = (c[2] + c[1] * x) + c[0] * x2;
-  return low + high * x8;
-}
-
 double motor_angle_slope(double mirror_beta_deg) {
   double slope = 0.0;
   const int degree = static_cast<int>(kMotorPolynomial.size()) - 1;
@@ -42,10 +31,6 @@ double mirror_beta_deg_from_motor_angle(double target_deg) {
     beta = next;
   }
   return beta;
-}
-
-EncoderCount encoder_count(double motor_angle_deg) {
-  return static_cast<EncoderCount>(std::lround(motor_angle_deg / kEncoderDegPerCount));
 }
 
 double motor_angle_from_encoder_deg(EncoderCount count) { return count * kEncoderDegPerCount; }

@@ -66,7 +66,12 @@ TEST(FrameRays, PulsesEqualPulseOfFrameForBothModelsOrdersAndDirections) {
       scan.fiber_order = order;
       scan.start_s = 12.5;
       const FrameRayBuilder builder(scan, Mount{});
-      for (const std::int64_t frame_index : {0, 1, 7, 40}) {
+      // The last two: the flight's pulse index passes 2⁵³ within the frame, and lies beyond 2⁶⁰,
+      // where a line's first index is not always a double and the builder times each pulse by
+      // pulse_time_s instead of a line's index plus the slot.
+      for (const std::int64_t frame_index :
+           {std::int64_t{0}, std::int64_t{1}, std::int64_t{7}, std::int64_t{40},
+            std::int64_t{442'570'718'098}, std::int64_t{100'000'000'000'000}}) {
         const FrameSweep sweep = frame_sweep(scan, 99, frame_index, frame_index == 7 ? 3.5 : 0.0);
         const Frame frame = build_frame(builder, scan, sweep, hover);
         int inactive = 0;

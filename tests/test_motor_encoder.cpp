@@ -3,8 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
+#include <random>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "python_oracle.hpp"
 #include "sensor/motor_encoder.hpp"
@@ -50,6 +53,35 @@ TEST(MotorEncoder, SlopeIsNegativeAndMatchesFiniteDifferences) {
       ASSERT_LT(phi, previous) << "φ not decreasing at β = " << beta;
       previous = phi;
     }
+  }
+}
+
+// encoder_word is lround's word without the libm call: the same int16 (the 16-bit word wraps) on
+// halves and their neighbours, the int16 edges, values that wrap, huge values, ±0, inf and NaN.
+TEST(MotorEncoder, EncoderWordEqualsLroundCastToTheWord) {
+  const auto lround_word = [](double counts) {
+    return static_cast<EncoderCount>(std::lround(counts));
+  };
+  std::vector<double> values = {0.0,    -0.0,   0.5,     -0.5,    1.5,     -1.5,  32767.5,
+                                -32768.5, 32768.0, -32769.0, 65535.5, 1e9 + 0.5, 0x1p52,
+                                0x1p62 + 0x1p10, -0x1p62 - 0x1p11, 0x1p63, -0x1p63, 1e300,
+                                std::numeric_limits<double>::infinity(),
+                                -std::numeric_limits<double>::infinity(),
+                                std::numeric_limits<double>::quiet_NaN()};
+  for (double half = -40000.5; half <= 40000.5; half += 997.0) {
+    values.push_back(half);
+    values.push_back(std::nextafter(half, 0.0));
+    values.push_back(std::nextafter(half, half * 2.0));
+  }
+  std::mt19937_64 random(11);
+  std::uniform_real_distribution<double> counts(-40000.0, 40000.0);
+  for (int i = 0; i < 100000; ++i) values.push_back(counts(random));
+  for (const double value : values) {
+    if (!(std::abs(value) < 0x1p63)) {
+      EXPECT_EQ(encoder_word(value), 0) << value;  // lround: unspecified (glibc: LONG_MIN → 0)
+      continue;
+    }
+    ASSERT_EQ(encoder_word(value), lround_word(value)) << value;
   }
 }
 
