@@ -208,14 +208,22 @@ void simulate_frames(const FrameSimulator& simulator, const FlightSetup& setup,
   // threads: 14.6-15.1 M pulses/s with 2 frames in flight, 12.7-13.1 M with 4, 11.4-13.0 M with 1.
   const int frames_in_flight = std::max(2, threads);
   // One encoding per buffer of the pipeline: a frame is encoded where it is simulated, in the
-  // parallel stage, and the in-order sink only appends its bytes.
+  // parallel stage, and the in-order sink only appends its bytes. The words and the summary's
+  // tally are encoded block by block while the simulation has the block's pulses and returns in
+  // cache; the rest (points, HELLAS header) once the frame is whole.
   std::vector<FrameEncoding> encodings(static_cast<std::size_t>(frames_in_flight));
+  for (FrameEncoding& encoding : encodings) outputs.size_encoding(encoding);
   std::int64_t done = 0;
   run_flight(
       simulator, setup.trajectory, range, frames_in_flight,
+      [&](const FrameResult& frame, int begin, int end) {
+        outputs.encode_pulses(frame.view(), begin, end,
+                              encodings[static_cast<std::size_t>(frame.buffer)]);
+      },
       [&](const FrameResult& frame) {
-        outputs.encode_frame(frame.view(), setup.trajectory.pose_at(frame.pulses.front().time_s),
-                             encodings[static_cast<std::size_t>(frame.buffer)]);
+        outputs.finish_encoding(frame.view(),
+                                setup.trajectory.pose_at(frame.pulses.front().time_s),
+                                encodings[static_cast<std::size_t>(frame.buffer)]);
       },
       [&](const FrameResult& frame) {
         outputs.add_frame(frame.view(), encodings[static_cast<std::size_t>(frame.buffer)]);

@@ -17,6 +17,12 @@ void run_flight(const FrameSimulator& simulator, const PoseSource& poses, const 
 
 void run_flight(const FrameSimulator& simulator, const PoseSource& poses, const FlightRange& range,
                 int frames_in_flight, const FramePrepare& prepare, const FrameSink& sink) {
+  run_flight(simulator, poses, range, frames_in_flight, FrameBlockDone(), prepare, sink);
+}
+
+void run_flight(const FrameSimulator& simulator, const PoseSource& poses, const FlightRange& range,
+                int frames_in_flight, const FrameBlockDone& block_done,
+                const FramePrepare& prepare, const FrameSink& sink) {
   if (frames_in_flight < 1) throw Error("engine: frames in flight must be at least 1");
   if (range.frame_count <= 0) return;
 
@@ -50,7 +56,7 @@ void run_flight(const FrameSimulator& simulator, const PoseSource& poses, const 
           tbb::make_filter<FrameResult*, FrameResult*>(tbb::filter_mode::parallel,
                                                        [&](FrameResult* buffer) {
                                                          simulator.simulate(buffer->frame, poses,
-                                                                            *buffer);
+                                                                            *buffer, block_done);
                                                          if (prepare) prepare(*buffer);
                                                          return buffer;
                                                        }) &

@@ -1,7 +1,8 @@
 #pragma once
 // A flight as a stream of frames (DESIGN.md "Flight pipeline"): tbb::parallel_pipeline with a
-// serial in-order source (frame indices), parallel frame simulation (followed by an optional
-// parallel `prepare` step, e.g. encoding the frame's outputs), and a serial in-order sink.
+// serial in-order source (frame indices), parallel frame simulation (with an optional step on
+// each block of pulses as it completes and an optional `prepare` step on the whole frame after
+// it, e.g. encoding the frame's outputs), and a serial in-order sink.
 // At most `frames_in_flight` frames exist at once, each in a FrameResult recycled from a fixed
 // pool (FrameResult::buffer names its slot), so memory stays flat however long the flight. The
 // sink sees frames in index order.
@@ -30,5 +31,10 @@ void run_flight(const FrameSimulator& simulator, const PoseSource& poses, const 
 // The same with `prepare` (may be empty) run on each frame in the parallel stage.
 void run_flight(const FrameSimulator& simulator, const PoseSource& poses, const FlightRange& range,
                 int frames_in_flight, const FramePrepare& prepare, const FrameSink& sink);
+// The same with `block_done` (may be empty) run on each block of a frame as its simulation
+// completes it (FrameSimulator::simulate), before `prepare` runs on the whole frame.
+void run_flight(const FrameSimulator& simulator, const PoseSource& poses, const FlightRange& range,
+                int frames_in_flight, const FrameBlockDone& block_done,
+                const FramePrepare& prepare, const FrameSink& sink);
 
 }  // namespace owsim

@@ -79,7 +79,8 @@ void FrameSimulator::receive(FrameResult& out, std::span<const PulseCandidates> 
       });
 }
 
-void FrameSimulator::simulate(std::int64_t frame, const PoseSource& poses, FrameResult& out) const {
+void FrameSimulator::simulate(std::int64_t frame, const PoseSource& poses, FrameResult& out,
+                              const FrameBlockDone& block_done) const {
   prepare(frame, poses, out);
   const int fibers = params_.scan.fibers_per_line;
   // Each task takes its lines through all three steps while their data is in cache; the result
@@ -102,6 +103,7 @@ void FrameSimulator::simulate(std::int64_t frame, const PoseSource& poses, Frame
                               std::span<const std::uint8_t>(out.active).subspan(begin, count),
                               block, 0, static_cast<unsigned>(count));
           receive_range(out, block, static_cast<int>(begin), static_cast<int>(begin + count));
+          if (block_done) block_done(out, static_cast<int>(begin), static_cast<int>(begin + count));
         }
       },
       tbb::simple_partitioner{});

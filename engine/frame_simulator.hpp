@@ -7,6 +7,7 @@
 #include <tbb/enumerable_thread_specific.h>
 
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -42,14 +43,22 @@ struct FrameSimulatorParams {
   std::uint64_t seed = 0;
 };
 
+// Called by the worker that simulated pulses [begin, end) of `frame` right after their receiver
+// pass, while that block's pulses and returns are still in its cache: concurrently for disjoint
+// blocks of a frame, in any order. Blocks start and end on line boundaries.
+using FrameBlockDone = std::function<void(const FrameResult& frame, int begin, int end)>;
+
 class FrameSimulator {
  public:
   FrameSimulator(const FrameSimulatorParams& params, const EmbreeScene& scene, TraceApi api);
 
   // Pattern, rays, trace and the receiver post-pass for one frame, in parallel over blocks of
   // lines; the same result as build_rays, a trace and receive in turn. A block's candidates live
-  // only in its worker's scratch buffer, between its trace and its receiver pass.
-  void simulate(std::int64_t frame, const PoseSource& poses, FrameResult& out) const;
+  // only in its worker's scratch buffer, between its trace and its receiver pass. `block_done`
+  // (may be empty) is called for each block when its returns are complete; an exception it
+  // throws stops the frame and reaches the caller.
+  void simulate(std::int64_t frame, const PoseSource& poses, FrameResult& out,
+                const FrameBlockDone& block_done = {}) const;
   // The pattern and rays alone (no trace): what `trace-only` benchmarks and the brute-force
   // reference start from.
   void build_rays(std::int64_t frame, const PoseSource& poses, FrameResult& out) const;

@@ -48,17 +48,36 @@ class WordSink {
     return scan.model == SensorModel::milows ? "flight.d64" : "flight.hellas";
   }
 
-  // The frame's words into `out` (reads only scan_: safe on any thread beside append()).
-  void encode(const FrameView& frame, FrameEncoding& out) const {
+  // The word buffer of `out` sized for a frame (once per encoding).
+  void size(FrameEncoding& out) const {
     const auto pulses = static_cast<std::size_t>(scan_.pulses_per_frame());
     if (scan_.model == SensorModel::milows) {
       out.milows_words.resize(pulses);
-      pack_milows_frame(frame.pulses, frame.returns, out.milows_words);
+    } else {
+      out.hellas_words.resize(pulses);
+    }
+  }
+
+  // The words of pulses [first, first + count) into their places in `out` (sized; reads only
+  // scan_: safe on any thread beside append(), concurrently for disjoint pulses).
+  void encode(const FrameView& frame, std::size_t first, std::size_t count,
+              FrameEncoding& out) const {
+    const auto pulses = frame.pulses.subspan(first, count);
+    const auto returns = frame.returns.subspan(first, count);
+    if (scan_.model == SensorModel::milows) {
+      pack_milows_frame(pulses, returns,
+                        std::span<std::uint64_t>(out.milows_words).subspan(first, count));
       return;
     }
-    out.hellas_header_word = hellas_file_header_word(frame.sweep, frame.pulses.front().time_s);
-    out.hellas_words.resize(pulses);
-    pack_hellas_frame(scan_, frame.sweep, frame.pulses, frame.returns, out.hellas_words);
+    pack_hellas_frame(scan_, frame.sweep, pulses, returns,
+                      std::span<std::uint32_t>(out.hellas_words).subspan(first, count));
+  }
+
+  // What the file takes once from a frame: the HELLAS header word, before the first frame.
+  void encode_header(const FrameView& frame, FrameEncoding& out) const {
+    if (scan_.model == SensorModel::hellas) {
+      out.hellas_header_word = hellas_file_header_word(frame.sweep, frame.pulses.front().time_s);
+    }
   }
 
   void append(const FrameEncoding& encoded) {
@@ -249,12 +268,62 @@ void FlightOutputs::add_frame(const FrameView& frame, const Pose& frame_start) {
 
 void FlightOutputs::encode_frame(const FrameView& frame, const Pose& frame_start,
                                  FrameEncoding& out) const {
+  size_encoding(out);
+  encode_pulses(frame, 0, static_cast<int>(frame.pulses.size()), out);
+  finish_encoding(frame, frame_start, out);
+}
+
+void FlightOutputs::size_encoding(FrameEncoding& out) const {
+  if (words_) words_->size(out);
+  out.line_blocks.resize(static_cast<std::size_t>(scan_.lines_per_frame));
+}
+
+void FlightOutputs::encode_pulses(const FrameView& frame, int begin, int end,
+                                  FrameEncoding& out) const {
+  const int pulses = scan_.pulses_per_frame();
+  const int fibers = scan_.fibers_per_line;
+  if (begin < 0 || begin >= end || end > pulses || begin % fibers != 0 ||
+      (end % fibers != 0 && end != pulses) || frame.pulses.size() != static_cast<std::size_t>(pulses) ||
+      frame.returns.size() != frame.pulses.size() ||
+      out.line_blocks.size() != static_cast<std::size_t>(scan_.lines_per_frame)) {
+    throw Error("outputs: pulses " + std::to_string(begin) + ".." + std::to_string(end) +
+                " are not whole lines of a frame of this scan, or the encoding is not sized");
+  }
+  // The block's tally and error go to the entry of its first line; its other lines' are emptied.
+  const int first_line = begin / fibers;
+  const int end_line = (end + fibers - 1) / fibers;
+  for (int line = first_line + 1; line < end_line; ++line) {
+    FrameEncoding::LineBlock& empty = out.line_blocks[static_cast<std::size_t>(line)];
+    summary_.tally({}, {}, empty.tally);
+    empty.error = nullptr;
+  }
+  FrameEncoding::LineBlock& block = out.line_blocks[static_cast<std::size_t>(first_line)];
+  block.error = nullptr;
+  try {
+    const auto first = static_cast<std::size_t>(begin);
+    const auto count = static_cast<std::size_t>(end - begin);
+    summary_.tally(frame.pulses.subspan(first, count), frame.returns.subspan(first, count),
+                   block.tally);
+    if (words_) words_->encode(frame, first, count, out);
+  } catch (...) {
+    block.error = std::current_exception();
+  }
+}
+
+void FlightOutputs::finish_encoding(const FrameView& frame, const Pose& frame_start,
+                                    FrameEncoding& out) const {
   out.frame = frame.frame;
   out.frame_start = frame_start;
   out.error = nullptr;
+  // The blocks' parts in line order: the first error, and the tally as one pass would give it.
+  summary_.tally({}, {}, out.tally);
+  for (const FrameEncoding::LineBlock& block : out.line_blocks) {
+    if (block.error && !out.error) out.error = block.error;
+    out.tally.append(block.tally);
+  }
+  if (out.error) return;
   try {
-    summary_.tally(frame.pulses, frame.returns, out.tally);
-    if (words_) words_->encode(frame, out);
+    if (words_) words_->encode_header(frame, out);
     if (points_csv_ || points_las_ || points_ply_) {
       frame_points(frame, *local_frame_, out.points);
       if (points_csv_) {

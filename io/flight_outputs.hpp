@@ -83,6 +83,18 @@ class FlightOutputs {
   void encode_frame(const FrameView& frame, const Pose& frame_start, FrameEncoding& out) const;
   void add_frame(const FrameView& frame, const FrameEncoding& encoded);
 
+  // encode_frame() in three steps, so the per-pulse part (the words and the summary tally) runs on
+  // each block of a frame while the simulation has it in cache (FrameBlockDone of
+  // engine/frame_simulator.hpp): size_encoding() sizes an encoding's buffers for this scan, once;
+  // encode_pulses() encodes pulses [begin, end) of the frame, whole lines, concurrently for
+  // disjoint blocks of the frame (every line in exactly one block), an error kept in `out`; after
+  // the frame's last block, finish_encoding() does the rest. The result is encode_frame()'s.
+  // encode_pulses throws owsim::Error if the pulses are not whole lines of a frame of this scan or
+  // `out` is not sized.
+  void size_encoding(FrameEncoding& out) const;
+  void encode_pulses(const FrameView& frame, int begin, int end, FrameEncoding& out) const;
+  void finish_encoding(const FrameView& frame, const Pose& frame_start, FrameEncoding& out) const;
+
   // Completes every file and writes summary.json with `run_facts` merged into the totals; then
   // removes the checkpoint.
   void finish(const nlohmann::json& run_facts);

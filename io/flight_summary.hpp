@@ -58,6 +58,16 @@ struct FrameTally {
   std::array<std::uint64_t, 4> returns_by_class{};
   std::uint64_t second_returns = 0;
   std::vector<ObjectHit> object_hits;
+
+  // Adds the tally of the pulses that follow this one's: counts summed, object hits after ours.
+  void append(const FrameTally& later) {
+    pulses += later.pulses;
+    for (std::size_t c = 0; c < returns_by_class.size(); ++c) {
+      returns_by_class[c] += later.returns_by_class[c];
+    }
+    second_returns += later.second_returns;
+    object_hits.insert(object_hits.end(), later.object_hits.begin(), later.object_hits.end());
+  }
 };
 
 class FlightSummary {

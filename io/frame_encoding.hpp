@@ -29,6 +29,14 @@ struct FrameEncoding {
   std::vector<unsigned char> ply_vertices;  // points.ply
   // What encoding threw: add_frame rethrows it, so errors surface in frame order.
   std::exception_ptr error;
+  // The per-pulse part as FlightOutputs::encode_pulses leaves it, one entry per scan line: a
+  // block's tally and error in the entry of its first line, the block's other lines empty.
+  // finish_encoding merges them, in line order, into `tally` and `error`.
+  struct LineBlock {
+    FrameTally tally;
+    std::exception_ptr error;
+  };
+  std::vector<LineBlock> line_blocks;
 };
 
 }  // namespace owsim

@@ -75,17 +75,42 @@ class FrameEncodingTest : public ::testing::Test {
     outputs.finish({{"scenario", "synthetic"}});
   }
 
+  // The frame's words and tally in blocks of whole lines, the last block first, as the frame
+  // simulator's workers hand them over (the block sizes change from frame to frame, so a reused
+  // encoding meets a different split), then the rest of the frame.
+  void encode_in_blocks(const FlightOutputs& outputs, const SyntheticFrame& frame,
+                        FrameEncoding& out) const {
+    const int fibers = scan_.fibers_per_line;
+    const int lines_per_block = 1 + static_cast<int>(frame.frame % 3) * 2;  // 1, 3, 5
+    std::vector<std::pair<int, int>> blocks;
+    for (int line = 0; line < scan_.lines_per_frame; line += lines_per_block) {
+      const int end = std::min(scan_.lines_per_frame, line + lines_per_block);
+      blocks.emplace_back(line * fibers, end * fibers);
+    }
+    for (auto block = blocks.rbegin(); block != blocks.rend(); ++block) {
+      outputs.encode_pulses(frame.view(), block->first, block->second, out);
+    }
+    outputs.finish_encoding(frame.view(), frame.start, out);
+  }
+
   // The frames in batches of kPool, each batch encoded on kPool threads at once (the batch's last
-  // frame first) into a pool of reused encodings, then added in order.
+  // frame first) into a pool of reused encodings, then added in order. Frames of odd index go
+  // through encode_frame, the others block by block.
   void write_encoded_in_parallel(const std::string& folder) const {
     FlightOutputs outputs(options(folder), scene_, scan_, local_frame_);
     std::vector<FrameEncoding> pool(kPool);
+    for (FrameEncoding& encoding : pool) outputs.size_encoding(encoding);
     for (std::size_t first = 0; first < frames_.size(); first += kPool) {
       const std::size_t end = std::min(first + kPool, frames_.size());
       std::vector<std::thread> workers;
       for (std::size_t f = end; f-- > first;) {
-        workers.emplace_back(
-            [&, f] { outputs.encode_frame(frames_[f].view(), frames_[f].start, pool[f % kPool]); });
+        workers.emplace_back([&, f] {
+          if (f % 2 == 1) {
+            outputs.encode_frame(frames_[f].view(), frames_[f].start, pool[f % kPool]);
+          } else {
+            encode_in_blocks(outputs, frames_[f], pool[f % kPool]);
+          }
+        });
       }
       for (std::thread& worker : workers) worker.join();
       for (std::size_t f = first; f < end; ++f)
@@ -206,6 +231,22 @@ TEST_F(FrameEncodingTest, AnEncodingErrorSurfacesWhenItsFrameIsAdded) {
     EXPECT_NE(std::string(e.what()).find("object index 77"), std::string::npos) << e.what();
   }
   EXPECT_EQ(outputs.frames_done(), 1);
+}
+
+TEST_F(FrameEncodingTest, PulsesThatAreNotWholeLinesOrAnUnsizedEncodingAreRefused) {
+  FlightOutputs outputs(options("blocks"), scene_, scan_, local_frame_);
+  FrameEncoding unsized;
+  EXPECT_THROW(outputs.encode_pulses(frames_[0].view(), 0, scan_.fibers_per_line, unsized), Error);
+  FrameEncoding encoding;
+  outputs.size_encoding(encoding);
+  const int fibers = scan_.fibers_per_line;
+  for (const auto& [begin, end] : std::vector<std::pair<int, int>>{
+           {1, fibers}, {0, fibers + 1}, {fibers, fibers}, {-fibers, 0},
+           {0, scan_.pulses_per_frame() + fibers}}) {
+    EXPECT_THROW(outputs.encode_pulses(frames_[0].view(), begin, end, encoding), Error)
+        << begin << ".." << end;
+  }
+  EXPECT_NO_THROW(outputs.encode_pulses(frames_[0].view(), fibers, 3 * fibers, encoding));
 }
 
 TEST_F(FrameEncodingTest, AnEncodingOfAnotherFrameIsRefused) {
