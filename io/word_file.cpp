@@ -1,6 +1,7 @@
 #include "io/word_file.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cerrno>
 #include <cstring>
 #include <string>
@@ -62,12 +63,21 @@ void WordFileWriter<Word>::write(Word word) {
 
 template <typename Word>
 void WordFileWriter<Word>::write(std::span<const Word> words) {
-  for (const Word word : words) {
+  // As many words as the buffer has room for at a time: one copy on a little-endian host.
+  while (!words.empty()) {
     if (buffered_bytes_ == buffer_.size()) flush_buffer();
-    store_little_endian(word, buffer_.data() + buffered_bytes_);
-    buffered_bytes_ += sizeof(Word);
+    const std::size_t n =
+        std::min(words.size(), (buffer_.size() - buffered_bytes_) / sizeof(Word));
+    unsigned char* const out = buffer_.data() + buffered_bytes_;
+    if constexpr (std::endian::native == std::endian::little) {
+      std::memcpy(out, words.data(), n * sizeof(Word));
+    } else {
+      for (std::size_t i = 0; i < n; ++i) store_little_endian(words[i], out + i * sizeof(Word));
+    }
+    buffered_bytes_ += n * sizeof(Word);
+    words_written_ += n;
+    words = words.subspan(n);
   }
-  words_written_ += words.size();
 }
 
 template <typename Word>
