@@ -62,8 +62,17 @@ void FrameSimulator::receive_range(FrameResult& out, std::span<const PulseCandid
       returns.counter2 = receiver.counter.timeout_counts;
       continue;
     }
-    select_returns(candidates[static_cast<std::size_t>(k - begin)].gather(gathered), receiver,
-                   params_.seed, out.frame, k, returns);
+    // Most pulses meet one surface or none and no wire: no gathering for them.
+    const PulseCandidates& met = candidates[static_cast<std::size_t>(k - begin)];
+    if (met.wires().empty()) {
+      if (met.has_solid()) {
+        select_single_return(met.solid(), receiver, params_.seed, out.frame, k, returns);
+      } else {
+        set_no_returns(receiver, returns);
+      }
+      continue;
+    }
+    select_returns(met.gather(gathered), receiver, params_.seed, out.frame, k, returns);
   }
 }
 

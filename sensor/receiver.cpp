@@ -85,39 +85,17 @@ double range_noise_sigma_m(const ReceiverParams& p) {
                                      : p.range_noise_sigma_m;
 }
 
-void select_returns(std::span<Candidate> candidates, const ReceiverParams& p, std::uint64_t seed,
-                    std::int64_t frame, int pulse, PulseReturns& out) {
-  out.count = 0;
-  out.counter1 = out.counter2 = p.counter.timeout_counts;
+namespace {
 
-  // SENSOR-SPEC §7 detection: ξ_rx/ξ_tx ≥ threshold (NaN energies and ranges never register).
-  const auto registers = [&](const Candidate& c) {
-    return c.energy_rel >= p.threshold && std::isfinite(c.range_m);
-  };
-  // SENSOR-SPEC §7 pinned return selection. Most pulses meet one surface or none: nothing to sort.
-  const Candidate* chosen[2] = {nullptr, nullptr};
-  if (candidates.size() <= 1) {
-    if (candidates.empty() || !registers(candidates.front())) return;
-    chosen[0] = &candidates.front();
-  } else {
-    const std::span<Candidate> detected(
-        candidates.begin(), std::partition(candidates.begin(), candidates.end(), registers));
-    if (detected.empty()) return;
-    if (p.rule == ReturnRule::strongest) {
-      chosen[0] = &*std::min_element(detected.begin(), detected.end(), stronger);
-    } else {
-      std::sort(detected.begin(), detected.end(), nearer);
-      chosen[0] = &detected.front();
-      for (const Candidate& c : detected.subspan(1)) {
-        if (c.range_m >= detected.front().range_m + p.min_return_separation_m) {
-          chosen[1] = &c;
-          break;
-        }
-      }
-    }
-  }
+// SENSOR-SPEC §7 detection: ξ_rx/ξ_tx ≥ threshold (NaN energies and ranges never register).
+bool registers(const Candidate& c, const ReceiverParams& p) {
+  return c.energy_rel >= p.threshold && std::isfinite(c.range_m);
+}
 
-  // SENSOR-SPEC §1 noise and counter; a counter at the timeout is no return.
+// SENSOR-SPEC §1 noise and counter for the chosen candidates (chosen[1] may be null), written
+// into `out` whose count is 0 and counters the timeout; a counter at the timeout is no return.
+void record_returns(const Candidate* const (&chosen)[2], const ReceiverParams& p,
+                    std::uint64_t seed, std::int64_t frame, int pulse, PulseReturns& out) {
   const double sigma = range_noise_sigma_m(p);
   constexpr RandomPurpose kPurpose[2] = {RandomPurpose::range_noise_first,
                                          RandomPurpose::range_noise_second};
@@ -141,6 +119,46 @@ void select_returns(std::span<Candidate> candidates, const ReceiverParams& p, st
   }
   if (out.count >= 1) out.counter1 = out.returns[0].counter;
   if (out.count == 2) out.counter2 = out.returns[1].counter;
+}
+
+}  // namespace
+
+void select_returns(std::span<Candidate> candidates, const ReceiverParams& p, std::uint64_t seed,
+                    std::int64_t frame, int pulse, PulseReturns& out) {
+  if (candidates.size() == 1) {
+    select_single_return(candidates.front(), p, seed, frame, pulse, out);
+    return;
+  }
+  set_no_returns(p, out);
+  if (candidates.empty()) return;
+  // SENSOR-SPEC §7 pinned return selection.
+  const std::span<Candidate> detected(
+      candidates.begin(), std::partition(candidates.begin(), candidates.end(),
+                                         [&](const Candidate& c) { return registers(c, p); }));
+  if (detected.empty()) return;
+  const Candidate* chosen[2] = {nullptr, nullptr};
+  if (p.rule == ReturnRule::strongest) {
+    chosen[0] = &*std::min_element(detected.begin(), detected.end(), stronger);
+  } else {
+    std::sort(detected.begin(), detected.end(), nearer);
+    chosen[0] = &detected.front();
+    for (const Candidate& c : detected.subspan(1)) {
+      if (c.range_m >= detected.front().range_m + p.min_return_separation_m) {
+        chosen[1] = &c;
+        break;
+      }
+    }
+  }
+  record_returns(chosen, p, seed, frame, pulse, out);
+}
+
+void select_single_return(const Candidate& candidate, const ReceiverParams& p, std::uint64_t seed,
+                          std::int64_t frame, int pulse, PulseReturns& out) {
+  set_no_returns(p, out);
+  // One surface: nothing to sort; either rule keeps it if it registers.
+  if (!registers(candidate, p)) return;
+  const Candidate* const chosen[2] = {&candidate, nullptr};
+  record_returns(chosen, p, seed, frame, pulse, out);
 }
 
 std::uint16_t reference_counter(std::uint16_t reference_counts, const ReceiverParams& p,

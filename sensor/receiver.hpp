@@ -86,6 +86,16 @@ struct PulseReturns {
 // out.returns[0 .. count) are written: the entries beyond are left as they were.
 void select_returns(std::span<Candidate> candidates, const ReceiverParams& p, std::uint64_t seed,
                     std::int64_t frame, int pulse, PulseReturns& out);
+// No return: count 0 and both counters at the timeout (the returns array is left as it was):
+// select_returns of no candidate.
+inline void set_no_returns(const ReceiverParams& p, PulseReturns& out) {
+  out.count = 0;
+  out.counter1 = out.counter2 = p.counter.timeout_counts;
+}
+// select_returns of the one candidate a pulse met (most pulses: one surface, no wire), without
+// copying it into a span first.
+void select_single_return(const Candidate& candidate, const ReceiverParams& p, std::uint64_t seed,
+                          std::int64_t frame, int pulse, PulseReturns& out);
 // The same, returned.
 [[nodiscard]] inline PulseReturns select_returns(std::span<Candidate> candidates,
                                                  const ReceiverParams& p, std::uint64_t seed,

@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -83,6 +84,43 @@ TEST(Receiver, NoCandidatesIsNoReturn) {
   EXPECT_EQ(r.count, 0);
   EXPECT_EQ(r.counter1, 2066);
   EXPECT_EQ(r.counter2, 2066);
+}
+
+// The one-candidate path (what most pulses take) agrees with the general path, which it skips:
+// the same candidate beside one below the threshold goes through the partition (and the sort).
+TEST(Receiver, OneCandidateGivesWhatTheGeneralSelectionGives) {
+  std::mt19937_64 random(5);
+  std::uniform_real_distribution<double> range(-5.0, 1300.0), energy(0.0, 0.012);
+  for (const ReturnRule rule : {ReturnRule::first_second, ReturnRule::strongest}) {
+    for (const double sigma : {0.0, 0.4241, -1.0}) {
+      ReceiverParams p;
+      p.rule = rule;
+      p.range_noise_sigma_m = sigma;
+      for (int pulse = 0; pulse < 20000; ++pulse) {
+        Candidate c = candidate(range(random), energy(random), static_cast<std::uint32_t>(pulse));
+        if (pulse % 97 == 0) c.range_m = NAN;
+        if (pulse % 89 == 0) c.energy_rel = NAN;
+        PulseReturns single;
+        select_single_return(c, p, 7, 3, pulse, single);
+        std::array pair = {candidate(c.range_m * 0.5, 0.001), c};  // the weak one never registers
+        const PulseReturns general = select_returns(pair, p, 7, 3, pulse);
+        ASSERT_EQ(single.count, general.count) << pulse;
+        ASSERT_EQ(single.counter1, general.counter1) << pulse;
+        ASSERT_EQ(single.counter2, general.counter2) << pulse;
+        for (int r = 0; r < single.count; ++r) {
+          ASSERT_EQ(single.returns[r].range_m, general.returns[r].range_m) << pulse;
+          ASSERT_EQ(single.returns[r].object_index, general.returns[r].object_index) << pulse;
+        }
+      }
+    }
+  }
+  PulseReturns none;
+  none.count = 2;
+  set_no_returns(ReceiverParams{}, none);
+  const PulseReturns empty = select_returns({}, ReceiverParams{}, 1, 2, 3);
+  EXPECT_EQ(none.count, empty.count);
+  EXPECT_EQ(none.counter1, empty.counter1);
+  EXPECT_EQ(none.counter2, empty.counter2);
 }
 
 TEST(Receiver, ThresholdDropsWeakCandidates) {
