@@ -17,21 +17,6 @@ double centre_envelope_deg(const ScanParams& p) {
   return std::max(0.0, kMirrorBetaLimitDeg - 0.5 * p.sweep_deg - p.frame_jitter_deg);
 }
 
-std::uint16_t time_tag(double t_s, double ticks_per_s, std::uint32_t modulus) {
-  if (!std::isfinite(t_s)) throw Error("time tag: pulse time is not finite");
-  const double ticks = t_s * ticks_per_s;
-  const double whole = round_down(ticks + std::abs(ticks) * 1e-14);
-  // The common case in integers, the same value: both tag ranges are powers of two, so the
-  // two's-complement mask is the floored modulo, negative tick counts included.
-  if (std::abs(whole) < 0x1p62 && (modulus & (modulus - 1)) == 0) {
-    return static_cast<std::uint16_t>(static_cast<std::int64_t>(whole) &
-                                      static_cast<std::int64_t>(modulus - 1));
-  }
-  double wrapped = std::fmod(whole, static_cast<double>(modulus));  // exact for any double
-  if (wrapped < 0.0) wrapped += modulus;
-  return static_cast<std::uint16_t>(wrapped);
-}
-
 }  // namespace
 
 double pulse_time_s(const ScanParams& p, std::int64_t frame, int pulse) {
@@ -95,12 +80,11 @@ Pulse pulse_of_frame(const ScanParams& p, const FrameSweep& sweep, int pulse) {
   return out;
 }
 
-std::uint16_t milows_time_tag(double t_s) {
-  return time_tag(t_s, 1.0 / kMilowsTimeTagTickS, kMilowsTimeTagModulus);
-}
-
-std::uint16_t hellas_time_tag(double t_s) {
-  return time_tag(t_s, 1.0 / kHellasTimeTagTickS, kHellasTimeTagModulus);
+std::uint16_t time_tag_beyond(double t_s, double whole_ticks, std::uint32_t modulus) {
+  if (!std::isfinite(t_s)) throw Error("time tag: pulse time is not finite");
+  double wrapped = std::fmod(whole_ticks, static_cast<double>(modulus));  // exact for any double
+  if (wrapped < 0.0) wrapped += modulus;
+  return static_cast<std::uint16_t>(wrapped);
 }
 
 }  // namespace owsim

@@ -9,8 +9,10 @@
 // running total: any frame can be computed alone and gives the same numbers. Valid for frames with
 // |f · pulses_per_frame| < 2^63 and parameters that pass validate(); angles are exact to double
 // rounding, times to 1 ulp.
+#include <cmath>
 #include <cstdint>
 
+#include "geometry/exact_round.hpp"
 #include "sensor/motor_encoder.hpp"
 #include "sensor/scan_params.hpp"
 
@@ -73,7 +75,24 @@ struct Pulse {
 // 1e-14 below a tick boundary counts as on it: t = n / PRF rounds to a hair below an exact
 // boundary, while the true distance of a pulse below a boundary is at least 1/PRF of a tick
 // (1.6e-5), so the result is exact for |t| up to ~1.6e5 s. Throws for a non-finite t.
-[[nodiscard]] std::uint16_t milows_time_tag(double t_s);
-[[nodiscard]] std::uint16_t hellas_time_tag(double t_s);
+// Inline: the word packing takes one a pulse. The common case (|ticks| < 2⁶²) masks the int64
+// tick count, the floored modulo of both power-of-two ranges; the rest (huge and non-finite
+// times) goes to time_tag_beyond, which wraps with fmod or throws.
+[[nodiscard]] std::uint16_t time_tag_beyond(double t_s, double whole_ticks, std::uint32_t modulus);
+template <std::uint32_t Modulus>
+[[nodiscard]] inline std::uint16_t time_tag(double t_s, double ticks_per_s) {
+  static_assert(Modulus != 0 && (Modulus & (Modulus - 1)) == 0 && Modulus <= 65536);
+  const double ticks = t_s * ticks_per_s;
+  const double whole = round_down(ticks + std::abs(ticks) * 1e-14);
+  if (!(std::abs(whole) < 0x1p62)) return time_tag_beyond(t_s, whole, Modulus);  // NaN too
+  return static_cast<std::uint16_t>(static_cast<std::int64_t>(whole) &
+                                    static_cast<std::int64_t>(Modulus - 1));
+}
+[[nodiscard]] inline std::uint16_t milows_time_tag(double t_s) {
+  return time_tag<kMilowsTimeTagModulus>(t_s, 1.0 / kMilowsTimeTagTickS);
+}
+[[nodiscard]] inline std::uint16_t hellas_time_tag(double t_s) {
+  return time_tag<kHellasTimeTagModulus>(t_s, 1.0 / kHellasTimeTagTickS);
+}
 
 }  // namespace owsim
