@@ -25,6 +25,79 @@ struct Quadratic {
         p2(2.0 * at_0 - 4.0 * at_half + 2.0 * at_1) {}
 };
 
+// The chunk arithmetic below is compiled for AVX2 as well as the x86-64 baseline (SSE2) where
+// GCC can do so, and the CPU's best is chosen when the program loads: its loops run on twice the
+// lanes. "avx2" does not enable FMA, so both versions round every operation alike: the same bits.
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define OWSIM_AVX2_CLONE __attribute__((target_clones("avx2", "default")))
+#else
+#define OWSIM_AVX2_CLONE
+#endif
+
+constexpr int kMaxChunk = 64;
+
+// A chunk of a line's slots: the per-slot tables from its first slot, and the line's scalars.
+struct LineChunk {
+  int n = 0;
+  const double* slot = nullptr;  // the slot index as a double
+  const double* a = nullptr;
+  const double* b = nullptr;
+  const double* sin_alpha = nullptr;
+  const double* blend = nullptr;  // s = slot / F
+  bool time_from_index = false;   // the line's first flight index is a double exactly
+  bool milows = false;
+  double start_s = 0, prf_hz = 0, line_index = 0;                     // time
+  double beta_start_deg = 0, signed_sweep_deg = 0, first = 0, frame_pulses = 0;  // mirror β
+  double u[3][3] = {}, v[3][3] = {}, w[3][3] = {}, o[3][3] = {};  // [j][component]
+};
+
+struct ChunkArrays {
+  alignas(64) double dir[3][kMaxChunk];
+  alignas(64) double org[3][kMaxChunk];
+  alignas(64) double time_s[kMaxChunk];
+  alignas(64) double mirror_beta[kMaxChunk];
+  alignas(64) double counts[kMaxChunk];  // φ / count size (MilOWS)
+};
+
+// The chunk's per-pulse arithmetic over arrays: time (when time_from_index), mirror β, the
+// encoder's φ in counts, and the unit direction and origin of each ray (the reference slot's zero
+// vector becomes NaN here and is not stored).
+OWSIM_AVX2_CLONE void chunk_arithmetic(const LineChunk& line, ChunkArrays& out) {
+  const int n = line.n;
+  if (line.time_from_index) {
+    for (int i = 0; i < n; ++i) {
+      out.time_s[i] = line.start_s + (line.line_index + line.slot[i]) / line.prf_hz;
+    }
+  }
+  for (int i = 0; i < n; ++i) {
+    out.mirror_beta[i] = line.beta_start_deg +
+                         line.signed_sweep_deg * (line.first + line.slot[i]) / line.frame_pulses;
+  }
+  if (line.milows) {
+    for (int i = 0; i < n; ++i) {
+      out.counts[i] = motor_angle_deg(out.mirror_beta[i]) / kEncoderDegPerCount;
+    }
+  }
+  for (int c = 0; c < 3; ++c) {
+    const double u0 = line.u[0][c], u1 = line.u[1][c], u2 = line.u[2][c];
+    const double v0 = line.v[0][c], v1 = line.v[1][c], v2 = line.v[2][c];
+    const double w0 = line.w[0][c], w1 = line.w[1][c], w2 = line.w[2][c];
+    const double o0 = line.o[0][c], o1 = line.o[1][c], o2 = line.o[2][c];
+    for (int i = 0; i < n; ++i) {
+      const double s = line.blend[i];
+      out.dir[c][i] = line.a[i] * (u0 + s * (u1 + s * u2)) + line.b[i] * (v0 + s * (v1 + s * v2)) +
+                      line.sin_alpha[i] * (w0 + s * (w1 + s * w2));
+      out.org[c][i] = o0 + s * (o1 + s * o2);
+    }
+  }
+  for (int i = 0; i < n; ++i) {
+    const double inverse_norm =
+        1.0 / std::sqrt(out.dir[0][i] * out.dir[0][i] + out.dir[1][i] * out.dir[1][i] +
+                        out.dir[2][i] * out.dir[2][i]);
+    for (int c = 0; c < 3; ++c) out.dir[c][i] *= inverse_norm;
+  }
+}
+
 }  // namespace
 
 PulseRay pulse_ray(const Pulse& pulse, const PoseSource& poses, const Mount& mount,
@@ -92,22 +165,24 @@ void FrameRayBuilder::build_lines(const FrameSweep& sweep, const PoseSource& pos
   // the line's first plus the slot, exactly; the flight's index f·P + k is formed the same way
   // where that gives pulse_time_s's double (below), else each pulse is timed by pulse_time_s.
   const std::int64_t frame_first = sweep.frame * static_cast<std::int64_t>(frame_pulses);
-  const double signed_sweep_deg = sweep.direction * scan_.sweep_deg;
-  const auto frame_pulses_d = static_cast<double>(frame_pulses);
-  const double* const slot_d = slot_rays_.slot.data();
+  LineChunk line_chunk;
+  line_chunk.milows = milows;
+  line_chunk.start_s = scan_.start_s;
+  line_chunk.prf_hz = scan_.prf_hz;
+  line_chunk.beta_start_deg = sweep.mirror_beta_start_deg;
+  line_chunk.signed_sweep_deg = sweep.direction * scan_.sweep_deg;
+  line_chunk.frame_pulses = static_cast<double>(frame_pulses);
+  ChunkArrays arrays;
+  const double(&dir)[3][kMaxChunk] = arrays.dir;
+  const double(&org)[3][kMaxChunk] = arrays.org;
+  const double* const time_s = arrays.time_s;
+  const double* const mirror_beta = arrays.mirror_beta;
+  const double* const counts = arrays.counts;
 
   // A line's rays: dir(s) = R(s) · (a·u + b·v + sin α·e_y) with R(s) = R0 + s·R1 + s²·R2, so
   // dir(s) = a·U(s) + b·V(s) + sin α·W(s), U(s) = R(s)·u and so on: per line, the nine vectors
   // Rj·u, Rj·v, Rj·e_y; per pulse, three quadratics and a weighted sum in each component, over
-  // arrays of the line's slots that the compiler vectorises.
-  constexpr int kMaxChunk = 64;
-  alignas(64) double dir[3][kMaxChunk], org[3][kMaxChunk];
-  alignas(64) double time_s[kMaxChunk], mirror_beta[kMaxChunk], counts[kMaxChunk];
-  const double* const a = slot_rays_.a[direction].data();
-  const double* const b = slot_rays_.b[direction].data();
-  const double* const sin_alpha = slot_rays_.sin_alpha.data();
-  const double* const blend = slot_rays_.s.data();
-
+  // arrays of the line's slots (chunk_arithmetic).
   SensorPlacement start =
       placement_at(poses, pulse_time_s(scan_, sweep.frame, line_begin * fibers));
   for (int line = line_begin; line < line_end; ++line) {
@@ -123,62 +198,40 @@ void FrameRayBuilder::build_lines(const FrameSweep& sweep, const PoseSource& pos
                                             end.origin_enu_m);
     const double line_beta = mirror_beta_deg(scan_, sweep, first) * kRadPerDeg;
     const double sin_line = std::sin(line_beta), cos_line = std::cos(line_beta);
-    // [j][component]: Rj·u, Rj·v, Rj·e_y and the origin's Oj.
-    double u_basis[3][3], v_basis[3][3], w_basis[3][3], o_basis[3][3];
     const Eigen::Matrix3d* const r[3] = {&rotation.p0, &rotation.p1, &rotation.p2};
     const Eigen::Vector3d* const o[3] = {&origin.p0, &origin.p1, &origin.p2};
     for (int j = 0; j < 3; ++j) {
       for (int c = 0; c < 3; ++c) {
         const Eigen::Matrix3d& m = *r[j];
-        u_basis[j][c] = cos_line * m(c, 0) + sin_line * m(c, 2);
-        v_basis[j][c] = cos_line * m(c, 2) - sin_line * m(c, 0);
-        w_basis[j][c] = m(c, 1);
-        o_basis[j][c] = (*o[j])(c);
+        line_chunk.u[j][c] = cos_line * m(c, 0) + sin_line * m(c, 2);
+        line_chunk.v[j][c] = cos_line * m(c, 2) - sin_line * m(c, 0);
+        line_chunk.w[j][c] = m(c, 1);
+        line_chunk.o[j][c] = (*o[j])(c);
       }
     }
     const std::int64_t line_index = frame_first + first;
     const auto line_index_d = static_cast<double>(line_index);
     // When the line's first index is a double exactly, the double sum with the slot is rounded
     // once, as the conversion of the int64 index is: the same time.
-    const bool index_sum_exact =
+    line_chunk.time_from_index =
         std::abs(line_index_d) < 0x1p62 && static_cast<std::int64_t>(line_index_d) == line_index;
-    const auto first_d = static_cast<double>(first);
+    line_chunk.line_index = line_index_d;
+    line_chunk.first = static_cast<double>(first);
 
     for (int chunk = 0; chunk < fibers; chunk += kMaxChunk) {
       const int n = std::min(kMaxChunk, fibers - chunk);
-      const double* const k_slot = slot_d + chunk;
-      if (index_sum_exact) {
+      const auto at_chunk = static_cast<std::size_t>(chunk);
+      line_chunk.n = n;
+      line_chunk.slot = slot_rays_.slot.data() + at_chunk;
+      line_chunk.a = slot_rays_.a[direction].data() + at_chunk;
+      line_chunk.b = slot_rays_.b[direction].data() + at_chunk;
+      line_chunk.sin_alpha = slot_rays_.sin_alpha.data() + at_chunk;
+      line_chunk.blend = slot_rays_.s.data() + at_chunk;
+      chunk_arithmetic(line_chunk, arrays);
+      if (!line_chunk.time_from_index) {
         for (int i = 0; i < n; ++i) {
-          time_s[i] = scan_.start_s + (line_index_d + k_slot[i]) / scan_.prf_hz;
+          arrays.time_s[i] = pulse_time_s(scan_, sweep.frame, first + chunk + i);
         }
-      } else {
-        for (int i = 0; i < n; ++i) time_s[i] = pulse_time_s(scan_, sweep.frame, first + chunk + i);
-      }
-      for (int i = 0; i < n; ++i) {
-        mirror_beta[i] =
-            sweep.mirror_beta_start_deg + signed_sweep_deg * (first_d + k_slot[i]) / frame_pulses_d;
-      }
-      if (milows) {
-        for (int i = 0; i < n; ++i) counts[i] = motor_angle_deg(mirror_beta[i]) / kEncoderDegPerCount;
-      }
-      for (int c = 0; c < 3; ++c) {
-        const double u0 = u_basis[0][c], u1 = u_basis[1][c], u2 = u_basis[2][c];
-        const double v0 = v_basis[0][c], v1 = v_basis[1][c], v2 = v_basis[2][c];
-        const double w0 = w_basis[0][c], w1 = w_basis[1][c], w2 = w_basis[2][c];
-        const double o0 = o_basis[0][c], o1 = o_basis[1][c], o2 = o_basis[2][c];
-        for (int i = 0; i < n; ++i) {
-          const double s = blend[chunk + i];
-          dir[c][i] = a[chunk + i] * (u0 + s * (u1 + s * u2)) +
-                      b[chunk + i] * (v0 + s * (v1 + s * v2)) +
-                      sin_alpha[chunk + i] * (w0 + s * (w1 + s * w2));
-          org[c][i] = o0 + s * (o1 + s * o2);
-        }
-      }
-      // Unit directions (the reference slot's zero vector becomes NaN here and is not stored).
-      for (int i = 0; i < n; ++i) {
-        const double inverse_norm =
-            1.0 / std::sqrt(dir[0][i] * dir[0][i] + dir[1][i] * dir[1][i] + dir[2][i] * dir[2][i]);
-        for (int c = 0; c < 3; ++c) dir[c][i] *= inverse_norm;
       }
       for (int i = 0; i < n; ++i) {
         const int index = chunk + i;
