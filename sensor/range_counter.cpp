@@ -2,8 +2,6 @@
 
 #include <cmath>
 
-#include "geometry/exact_round.hpp"
-
 namespace owsim {
 
 double range_per_count_m(const RangeCounterParams& p) {
@@ -19,10 +17,7 @@ double timeout_range_m(const RangeCounterParams& p) {
 }
 
 std::uint16_t counter_from_range(double range_m, const RangeCounterParams& p) {
-  const double counts = round_half_away(range_m / range_per_count_m(p));
-  if (!(counts < p.timeout_counts)) return p.timeout_counts;  // also catches NaN
-  if (counts <= 0.0) return 0;
-  return static_cast<std::uint16_t>(counts);
+  return counter_from_counts(range_m / range_per_count_m(p), p.timeout_counts);
 }
 
 double range_from_counter(std::uint16_t counter, const RangeCounterParams& p) {

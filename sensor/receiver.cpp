@@ -97,13 +97,14 @@ bool registers(const Candidate& c, const ReceiverParams& p) {
 void record_returns(const Candidate* const (&chosen)[2], const ReceiverParams& p,
                     std::uint64_t seed, std::int64_t frame, int pulse, PulseReturns& out) {
   const double sigma = range_noise_sigma_m(p);
+  const RangeCounter counters(p.counter);
   constexpr RandomPurpose kPurpose[2] = {RandomPurpose::range_noise_first,
                                          RandomPurpose::range_noise_second};
   for (int i = 0; i < 2 && chosen[i] != nullptr; ++i) {
     const Candidate& c = *chosen[i];
     const double normal = sigma == 0.0 ? 0.0 : standard_normal({seed, frame, pulse, kPurpose[i]});
     const double range = noisy_range_m(c.range_m, sigma, normal);
-    const std::uint16_t counter = counter_from_range(range, p.counter);
+    const std::uint16_t counter = counters.counter(range);
     if (counter >= p.counter.timeout_counts) continue;
     Return& r = out.returns[out.count++];
     r.range_m = std::max(range, 0.0);

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <random>
 
 #include "sensor/range_counter.hpp"
 
@@ -69,6 +70,45 @@ TEST(RangeCounter, ParametersAreHonoured) {
   EXPECT_DOUBLE_EQ(range_per_count_m(p), 2.0 * range_per_count_m(kDefaults));
   EXPECT_EQ(counter_from_range(1e6, p), 1000);
   EXPECT_DOUBLE_EQ(timeout_range_m(p), 1000 * range_per_count_m(p));
+}
+
+// RangeCounter multiplies by 1/Δ; every counter must still be round(range/Δ)'s, above all where
+// the quotient lies on or next to a half count (where a product one ulp off would round the
+// other way without the fallback to the division).
+void expect_same_counters(const RangeCounterParams& p) {
+  const RangeCounter counters(p);
+  const double delta = range_per_count_m(p);
+  const auto check = [&](double range) {
+    ASSERT_EQ(counters.counter(range), counter_from_range(range, p)) << "range " << range;
+  };
+  int near_half = 0;
+  for (int count = -3; count < p.timeout_counts + 3; ++count) {
+    const double half = (count + 0.5) * delta;
+    double range = half;
+    for (int step = 0; step < 4; ++step) range = std::nextafter(range, -1e300);
+    for (int step = 0; step < 9; ++step, range = std::nextafter(range, 1e300)) {
+      check(range);
+      if (std::abs(range / delta - count) == 0.5) ++near_half;
+    }
+  }
+  EXPECT_GT(near_half, 100);  // the sweep did meet quotients exactly on a half count
+  std::mt19937_64 engine(20261122);
+  std::uniform_real_distribution<double> uniform(-10.0, 1.1 * timeout_range_m(p));
+  for (int i = 0; i < 200'000; ++i) check(uniform(engine));
+  for (const double special : {0.0, -0.0, 1e300, -1e300, std::numeric_limits<double>::infinity(),
+                               -std::numeric_limits<double>::infinity(),
+                               std::numeric_limits<double>::quiet_NaN(), 0x1p52 * delta}) {
+    check(special);
+  }
+}
+
+TEST(RangeCounter, ReciprocalCounterIsTheDivisionsBitForBit) {
+  expect_same_counters(kDefaults);
+  RangeCounterParams p;
+  p.timer_period_s = 3e-9;  // a Δ whose reciprocal rounds differently
+  p.refractive_index_air = 1.00029;
+  p.timeout_counts = 4095;
+  expect_same_counters(p);
 }
 
 }  // namespace
