@@ -302,8 +302,13 @@ void FlightOutputs::encode_pulses(const FrameView& frame, int begin, int end,
   try {
     const auto first = static_cast<std::size_t>(begin);
     const auto count = static_cast<std::size_t>(end - begin);
-    summary_.tally(frame.pulses.subspan(first, count), frame.returns.subspan(first, count),
-                   block.tally);
+    // The tally feeds summary.json alone: without that output, the blocks' tallies stay empty.
+    if (wants(OutputKind::summary)) {
+      summary_.tally(frame.pulses.subspan(first, count), frame.returns.subspan(first, count),
+                     block.tally);
+    } else {
+      summary_.tally({}, {}, block.tally);
+    }
     if (words_) words_->encode(frame, first, count, out);
   } catch (...) {
     block.error = std::current_exception();

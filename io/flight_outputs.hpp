@@ -99,6 +99,7 @@ class FlightOutputs {
   // removes the checkpoint.
   void finish(const nlohmann::json& run_facts);
 
+  // Tallies returns only when summary.json is among the outputs (frames are always counted).
   [[nodiscard]] const FlightSummary& summary() const { return summary_; }
   // The frames in the outputs: the next frame add_frame() takes.
   [[nodiscard]] std::int64_t frames_done() const { return frames_done_; }

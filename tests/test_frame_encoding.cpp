@@ -211,6 +211,30 @@ TEST_F(FrameEncodingTest, HellasFramesEncodedInParallelGiveTheSameBytes) {
   expect_same_bytes_every_way();
 }
 
+TEST_F(FrameEncodingTest, WithoutTheSummaryTheWordsAreTheSameAndNothingIsTallied) {
+  write_frame_by_frame("all");
+  FlightOutputOptions words_only = options("words_only");
+  words_only.outputs = {OutputKind::d64};
+  FlightOutputs outputs(words_only, scene_, scan_, local_frame_);
+  std::vector<FrameEncoding> pool(2);
+  for (FrameEncoding& encoding : pool) outputs.size_encoding(encoding);
+  for (const SyntheticFrame& frame : frames_) {
+    FrameEncoding& encoding = pool[static_cast<std::size_t>(frame.frame) % pool.size()];
+    encode_in_blocks(outputs, frame, encoding);
+    outputs.add_frame(frame.view(), encoding);
+  }
+  // The tally feeds summary.json alone, so a run without it skips it.
+  EXPECT_EQ(outputs.summary().frames(), static_cast<std::uint64_t>(kFrames));
+  EXPECT_EQ(outputs.summary().pulses(), 0u);
+  EXPECT_EQ(outputs.summary().returns_of(SurfaceClass::ground), 0u);
+  outputs.finish({});
+  const auto all = files_under(dir_ / "all");
+  const auto only = files_under(dir_ / "words_only");
+  EXPECT_EQ(only.size(), 1u);
+  ASSERT_TRUE(only.contains("flight.d64"));
+  EXPECT_TRUE(only.at("flight.d64") == all.at("flight.d64"));
+}
+
 TEST_F(FrameEncodingTest, AnEncodingErrorSurfacesWhenItsFrameIsAdded) {
   // Frames 1 and 2 name objects the points.csv table does not hold; frame 2 is encoded first.
   frames_[1].returns[5].count = 1;
