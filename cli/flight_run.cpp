@@ -205,8 +205,9 @@ void simulate_frames(const FrameSimulator& simulator, const FlightSetup& setup,
   // Each frame is itself simulated in parallel, so one frame per thread keeps every core busy;
   // more frames in flight only add their buffers (4.1 MB each on the corridor: pulses, rays and
   // returns) to what competes with the scene for the cache. `owsim bench` on the corridor with 2
-  // threads: 14.6-15.1 M pulses/s with 2 frames in flight, 12.7-13.1 M with 4, 11.4-13.0 M with 1.
-  const int frames_in_flight = std::max(2, threads);
+  // threads: 19.9-20.0 M pulses/s with 2 frames in flight, 19.2-19.4 M with 3, 19.0-19.4 M with
+  // 1; single-threaded, 10.1-10.2 M with 1 frame in flight and 9.8 M with 2.
+  const int frames_in_flight = std::max(1, threads);
   // One encoding per buffer of the pipeline: a frame is encoded where it is simulated, in the
   // parallel stage, and the in-order sink only appends its bytes. The words and the summary's
   // tally are encoded block by block while the simulation has the block's pulses and returns in
