@@ -302,13 +302,10 @@ void FlightOutputs::encode_pulses(const FrameView& frame, int begin, int end,
   try {
     const auto first = static_cast<std::size_t>(begin);
     const auto count = static_cast<std::size_t>(end - begin);
-    // The tally feeds summary.json alone: without that output, the blocks' tallies stay empty.
-    if (wants(OutputKind::summary)) {
-      summary_.tally(frame.pulses.subspan(first, count), frame.returns.subspan(first, count),
-                     block.tally);
-    } else {
-      summary_.tally({}, {}, block.tally);
-    }
+    // The tally feeds summary.json alone: without that output, the block's tally stays empty.
+    const std::size_t tallied = wants(OutputKind::summary) ? count : 0;
+    summary_.tally(frame.pulses.subspan(first, tallied), frame.returns.subspan(first, tallied),
+                   block.tally);
     if (words_) words_->encode(frame, first, count, out);
   } catch (...) {
     block.error = std::current_exception();
