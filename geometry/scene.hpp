@@ -65,4 +65,15 @@ struct Scene {
   Terrain terrain;
 };
 
+// The id of every object a return can belong to, by object index: conductors, then cylinders,
+// then "terrain" (the order of sensor/pulse_candidates.hpp's object indices).
+[[nodiscard]] inline std::vector<std::string> object_ids(const Scene& scene) {
+  std::vector<std::string> ids;
+  ids.reserve(scene.conductors.size() + scene.cylinders.size() + 1);
+  for (const Conductor& conductor : scene.conductors) ids.push_back(conductor.id);
+  for (const Cylinder& cylinder : scene.cylinders) ids.push_back(cylinder.id);
+  ids.emplace_back("terrain");
+  return ids;
+}
+
 }  // namespace owsim

@@ -37,7 +37,7 @@ std::vector<std::string_view> message_fields(std::string_view line, std::size_t 
 
 ArduPilotLog read_ardupilot_log(const std::string& path, const ArduPilotLogOptions& options) {
   std::ifstream file(path);
-  if (!file) throw input_error(path, "cannot open the ArduPilot log");
+  if (!file) throw file_error(path, "cannot open the ArduPilot log");
   ArduPilotLog log;
   std::vector<AttLine> lines;
   GpsLine gps;

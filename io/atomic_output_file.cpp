@@ -96,7 +96,7 @@ void AtomicOutputFile::fail(std::string_view what, int error_number) const {
     problem += ": ";
     problem += std::strerror(error_number);
   }
-  throw input_error(final_path_.string(), problem);
+  throw file_error(final_path_.string(), problem);
 }
 
 void AtomicOutputFile::require_open(std::string_view operation) const {

@@ -61,7 +61,7 @@ class GridReader {
 
   HeightGrid read() {
     std::ifstream file(path_);
-    if (!file) throw input_error(path_, "cannot open the terrain grid file");
+    if (!file) throw file_error(path_, "cannot open the terrain grid file");
     std::string line;
     bool in_header = true;
     while (std::getline(file, line)) {

@@ -151,8 +151,7 @@ FlightOutputs::FlightOutputs(const FlightOutputOptions& options, const Scene& sc
   std::error_code error;
   std::filesystem::create_directories(options_.directory, error);
   if (error) {
-    throw input_error(options_.directory.string(),
-                      "cannot create the output folder: " + error.message());
+    throw file_error(options_.directory.string(), "cannot create the output folder: " + error.message());
   }
   // A checkpoint of another run must not outlive the temporaries this run is about to truncate.
   if (checkpointing() && resume_from == nullptr &&
@@ -204,10 +203,7 @@ void FlightOutputs::open_outputs(const Scene& scene, const RunCheckpoint* from) 
     }
   }
   if (wants(OutputKind::points)) {
-    std::vector<std::string> ids;
-    for (const Conductor& conductor : scene.conductors) ids.push_back(conductor.id);
-    for (const Cylinder& cylinder : scene.cylinders) ids.push_back(cylinder.id);
-    ids.emplace_back("terrain");  // the ground's object index comes last
+    std::vector<std::string> ids = object_ids(scene);
     const std::filesystem::path csv = directory / "points.csv";
     if (const auto* resume = state(&RunCheckpoint::points_csv, "points.csv"); !committed(csv)) {
       points_csv_ = std::make_unique<PointsCsvWriter>(

@@ -38,7 +38,7 @@ std::vector<NavRecord> read_hellsim(const std::string& path, const HellSimOption
                       "the HellSim tick weight (tick_s) must be a positive number of seconds");
   }
   std::ifstream file(path);
-  if (!file) throw input_error(path, "cannot open the HellSim trajectory file");
+  if (!file) throw file_error(path, "cannot open the HellSim trajectory file");
   std::vector<NavRecord> records;
   std::string line;
   std::size_t line_number = 0;

@@ -104,13 +104,7 @@ RecordingScene::RecordingScene(const Scenario& scenario, const RecordingLayout& 
                                                 timeout_range_m(scenario.receiver.counter));
 }
 
-std::vector<std::string> RecordingScene::object_ids() const {
-  std::vector<std::string> ids;
-  for (const Conductor& conductor : scene_.conductors) ids.push_back(conductor.id);
-  for (const Cylinder& cylinder : scene_.cylinders) ids.push_back(cylinder.id);
-  ids.emplace_back("terrain");  // the ground's object index comes last
-  return ids;
-}
+std::vector<std::string> RecordingScene::object_ids() const { return owsim::object_ids(scene_); }
 
 void pulse_rays(std::span<const Pulse> pulses, const PoseSource& poses, const Mount& mount,
                 SensorModel model, std::vector<PulseRay>& rays, std::vector<std::uint8_t>& active) {

@@ -156,8 +156,7 @@ MergeReport merge_recording(RecordingDecoder& decoder, const RecordingScene& sce
     std::error_code error;
     std::filesystem::create_directories(options.out.parent_path(), error);
     if (error) {
-      throw input_error(options.out.parent_path().string(),
-                        "cannot create the output folder: " + error.message());
+      throw file_error(options.out.parent_path().string(), "cannot create the output folder: " + error.message());
     }
   }
   std::optional<MilowsWordWriter> milows_out;

@@ -257,7 +257,7 @@ std::optional<RunCheckpoint> read_run_checkpoint(const std::filesystem::path& pa
   std::error_code error;
   if (!std::filesystem::exists(path, error)) return std::nullopt;
   std::ifstream file(path, std::ios::binary);
-  if (!file) throw input_error(path.string(), std::string("cannot open: ") + std::strerror(errno));
+  if (!file) throw file_error(path.string(), std::string("cannot open: ") + std::strerror(errno));
   const std::string text{std::istreambuf_iterator<char>(file), {}};
   try {
     const json in = json::parse(text);
@@ -314,7 +314,7 @@ void ContentHash::add(const void* data, std::size_t size) {
 void ContentHash::add_file(const std::filesystem::path& path) {
   std::FILE* file = std::fopen(path.c_str(), "rb");
   if (file == nullptr) {
-    throw input_error(path.string(), std::string("cannot open: ") + std::strerror(errno));
+    throw file_error(path.string(), std::string("cannot open: ") + std::strerror(errno));
   }
   std::vector<unsigned char> buffer(std::size_t{1} << 16);
   std::size_t got = 0;

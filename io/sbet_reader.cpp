@@ -36,12 +36,12 @@ enum Field : std::size_t {
 
 std::vector<NavRecord> read_sbet(const std::string& path) {
   std::ifstream file(path, std::ios::binary | std::ios::ate);
-  if (!file) throw input_error(path, "cannot open the SBET trajectory file");
+  if (!file) throw file_error(path, "cannot open the SBET trajectory file");
   std::vector<unsigned char> bytes(static_cast<std::size_t>(file.tellg()));
   file.seekg(0);
   if (!file.read(reinterpret_cast<char*>(bytes.data()),
                  static_cast<std::streamsize>(bytes.size()))) {
-    throw input_error(path, "cannot read the SBET trajectory file");
+    throw file_error(path, "cannot read the SBET trajectory file");
   }
   if (bytes.size() % kSbetRecordBytes != 0) {
     throw input_error(path, "truncated record at byte " +

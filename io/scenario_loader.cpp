@@ -487,6 +487,12 @@ class ScenarioReader {
     try {
       terrain.grid = read_esri_ascii_grid(resolve(name).string());
       terrain.grid.validate(resolve(name).string());
+    } catch (const FileError& error) {
+      try {
+        grid->fail(error.what());
+      } catch (const Error& located) {
+        throw FileError(located.what());  // still a file that cannot be read, now with its line
+      }
     } catch (const Error& error) {
       grid->fail(error.what());
     }

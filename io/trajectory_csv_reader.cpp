@@ -57,7 +57,7 @@ std::array<std::size_t, kNeeded> column_positions(std::string_view header,
 
 std::vector<NavRecord> read_trajectory_csv(const std::string& path) {
   std::ifstream file(path);
-  if (!file) throw input_error(path, "cannot open the CSV trajectory file");
+  if (!file) throw file_error(path, "cannot open the CSV trajectory file");
   std::vector<NavRecord> records;
   std::array<std::size_t, kNeeded> position{};
   bool have_header = false;

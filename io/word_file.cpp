@@ -104,14 +104,14 @@ WordFileReader<Word>::WordFileReader(std::filesystem::path path, std::size_t buf
     : path_(std::move(path)), buffer_(whole_words_bytes<Word>(buffer_bytes)) {
   std::error_code error;
   const auto status = std::filesystem::status(path_, error);
-  if (error) throw input_error(path_.string(), with_reason("cannot open", error.value()));
+  if (error) throw file_error(path_.string(), with_reason("cannot open", error.value()));
   if (!std::filesystem::is_regular_file(status)) {
-    throw input_error(path_.string(), "cannot open: not a regular file");
+    throw file_error(path_.string(), "cannot open: not a regular file");
   }
   file_bytes_ = std::filesystem::file_size(path_, error);
-  if (error) throw input_error(path_.string(), with_reason("cannot open", error.value()));
+  if (error) throw file_error(path_.string(), with_reason("cannot open", error.value()));
   file_ = std::fopen(path_.c_str(), "rb");
-  if (file_ == nullptr) throw input_error(path_.string(), with_reason("cannot open", errno));
+  if (file_ == nullptr) throw file_error(path_.string(), with_reason("cannot open", errno));
 }
 
 template <typename Word>

@@ -75,10 +75,10 @@ int line_1based(const YAML::Mark& mark) { return mark.is_null() ? 1 : mark.line 
 
 YamlSource YamlSource::from_file(const std::filesystem::path& path) {
   std::ifstream file(path, std::ios::binary);
-  if (!file) throw input_error(path.string(), "cannot read the file");
+  if (!file) throw file_error(path.string(), "cannot read the file");
   std::ostringstream text;
   text << file.rdbuf();
-  if (file.bad()) throw input_error(path.string(), "cannot read the file");
+  if (file.bad()) throw file_error(path.string(), "cannot read the file");
   return from_text(text.str(), path.string());
 }
 
