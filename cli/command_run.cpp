@@ -1,42 +1,73 @@
-// owsim run SCENARIO.yaml — simulate a whole flight (INTERFACE.md).
+// owsim run SCENARIO.yaml — simulate a whole flight (INTERFACE.md): options parsed into the
+// facade's SimulationOptions and RunOptions, then owsim::Simulation::run.
 #include <fmt/core.h>
 
 #include <string>
 
 #include "cli/commands.hpp"
-#include "cli/flight_run.hpp"
 #include "cli/option_checks.hpp"
+#include "cli/progress_line.hpp"
+#include "owsim/simulation.hpp"
 
 namespace owsim::cli {
+namespace {
+
+struct RunCommandOptions {
+  std::filesystem::path scenario;
+  SimulationOptions simulation;
+  RunOptions run;
+  std::string outputs;
+  bool quiet = false;
+};
+
+}  // namespace
 
 void add_run_command(CLI::App& app, CommandResult& /*result*/) {
-  auto options = std::make_shared<RunOptions>();
-  auto outputs = std::make_shared<std::string>();
-  auto quiet = std::make_shared<bool>(false);
+  auto options = std::make_shared<RunCommandOptions>();
   CLI::App* command = app.add_subcommand("run", "simulate a flight: sensor words, points, summary");
   command->add_option("scenario", options->scenario, "scenario file (YAML)")
       ->required()
       ->check(CLI::ExistingFile);
-  command->add_option("--out", options->out, "output folder (default out/<scenario name>/)");
-  auto* frames = command->add_option("--frames", options->frames, "number of frames to simulate")
-                     ->check(positive_number());
-  command->add_option("--duration", options->duration_s, "seconds of flight to simulate")
+  command->add_option("--out", options->run.out, "output folder (default out/<scenario name>/)");
+  auto* frames =
+      command->add_option("--frames", options->simulation.frames, "number of frames to simulate")
+          ->check(positive_number());
+  command->add_option("--duration", options->simulation.duration_s, "seconds of flight to simulate")
       ->check(positive_number())
       ->excludes(frames);
-  command->add_option("--threads", options->threads, "worker threads (default: every core)")
+  command->add_option("--threads", options->simulation.threads,
+                      "worker threads (default: every core)")
       ->check(positive_number());
-  command->add_option("--seed", options->seed, "override the scenario's seed");
-  command->add_option("--outputs", *outputs,
+  command->add_option("--seed", options->simulation.seed, "override the scenario's seed");
+  command->add_option("--outputs", options->outputs,
                       "comma list of d64, points, trajectory, summary, quicklook (default: all)");
-  command->add_flag("--no-noise", options->no_noise, "range noise off (σ = 0)");
-  command->add_flag("--resume", options->resume,
+  command->add_flag("--no-noise", options->simulation.no_noise, "range noise off (σ = 0)");
+  command->add_flag("--resume", options->run.resume,
                     "continue an interrupted run (same options) from its last complete frame");
-  command->add_flag("--quiet", *quiet, "no progress line");
-  command->callback([options, outputs, quiet] {
-    if (!outputs->empty()) options->outputs = parse_output_list(*outputs);
-    options->progress = !*quiet;
-    const RunReport report = run_flight_scenario(*options);
-    if (!*quiet) {
+  command->add_flag("--quiet", options->quiet, "no progress line");
+  command->callback([options] {
+    RunOptions run = options->run;
+    if (!options->outputs.empty()) run.outputs = parse_output_list(options->outputs);
+    const Simulation simulation = Simulation::open(options->scenario, options->simulation);
+    std::optional<ProgressLine> progress;
+    if (!options->quiet) {
+      run.progress = [&progress, &simulation](const RunProgress& at) {
+        if (!progress) {
+          progress.emplace(true, static_cast<std::uint64_t>(at.frames_total),
+                           static_cast<std::uint64_t>(at.first_frame));
+        }
+        progress->frame_done(
+            static_cast<std::uint64_t>(at.frames_done),
+            static_cast<std::uint64_t>(at.frames_done - at.first_frame) *
+                static_cast<std::uint64_t>(simulation.pulses_per_frame()));
+      };
+    }
+    run.notice = [options](std::string_view note) {
+      const bool always = note.starts_with("no checkpoint");  // said even with --quiet
+      if (always || !options->quiet) fmt::print(stderr, "owsim run --resume: {}\n", note);
+    };
+    const RunReport report = simulation.run(run);
+    if (!options->quiet) {
       fmt::print(stderr,
                  "{} frames{}, {} pulses in {:.2f} s ({:.0f} pulses/s, {:.2f}× real time, {} "
                  "threads) → {}\n",

@@ -15,10 +15,11 @@
 #include <limits>
 #include <vector>
 
-#include "cli/flight_run.hpp"
 #include "cli/peak_memory.hpp"
 #include "engine/brute_force_tracer.hpp"
 #include "geometry/error.hpp"
+#include "owsim/flight_run.hpp"
+#include "owsim/simulation.hpp"
 
 namespace owsim::cli {
 namespace {
@@ -120,13 +121,10 @@ double brute_force_seconds(const BruteForceTracer& tracer,
 // What `owsim run --outputs d64` does over the frames, into a scratch folder. Timed like
 // `owsim run`'s wall_s: the frame pipeline with every word written to the file's buffer, not the
 // final commit (flush, fsync, rename) that follows it.
-double end_to_end_seconds(const FrameSimulator& simulator, const FlightSetup& setup,
-                          const RunOptions& run, int threads) {
+double end_to_end_seconds(const FrameSimulator& simulator, const FlightSetup& setup, int threads) {
   const ScratchFolder folder;
-  RunOptions into_folder = run;
-  into_folder.out = folder.path();
-  FlightOutputs outputs(flight_output_options(setup, into_folder), setup.scene, setup.scenario.scan,
-                        setup.local_frame);
+  FlightOutputs outputs(flight_output_options(setup, folder.path(), {OutputKind::d64}),
+                        setup.scene, setup.scenario.scan, setup.local_frame);
   const double seconds = seconds_of([&] {
     simulate_frames(simulator, setup, FlightRange{0, setup.frames}, threads, outputs);
   });
@@ -161,12 +159,11 @@ ThroughputReport measure_throughput(const ThroughputOptions& options) {
   tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism,
                                   static_cast<std::size_t>(threads));
 
-  RunOptions run;
-  run.scenario = options.scenario;
+  SimulationOptions run;
   run.frames = options.frames;
   run.threads = threads;
-  run.outputs = {OutputKind::d64};
-  const FlightSetup setup(run);
+  const Simulation simulation = Simulation::open(options.scenario, run);
+  const FlightSetup& setup = simulation.setup();
   const ScanParams& scan = setup.scenario.scan;
   const std::uint64_t pulses = static_cast<std::uint64_t>(setup.frames) *
                                static_cast<std::uint64_t>(scan.pulses_per_frame());
@@ -201,11 +198,11 @@ ThroughputReport measure_throughput(const ThroughputOptions& options) {
   tbb::task_arena one_thread(1);
   for (int round = 1; round <= options.repeats; ++round) {
     trace_best[winner] = std::min(trace_best[winner], trace_seconds(tracer, frames, candidates));
-    end_to_end_best = std::min(end_to_end_best, end_to_end_seconds(simulator, setup, run, threads));
+    end_to_end_best = std::min(end_to_end_best, end_to_end_seconds(simulator, setup, threads));
     progress.note("end-to-end", round, options.repeats, rate(end_to_end_best));
     single_thread_best =
         std::min(single_thread_best,
-                 one_thread.execute([&] { return end_to_end_seconds(simulator, setup, run, 1); }));
+                 one_thread.execute([&] { return end_to_end_seconds(simulator, setup, 1); }));
     progress.note("single thread", round, options.repeats, rate(single_thread_best));
   }
 

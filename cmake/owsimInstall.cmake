@@ -3,7 +3,7 @@
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
-install(TARGETS owsim owsim_geometry owsim_sensor owsim_engine owsim_io
+install(TARGETS owsim owsim_geometry owsim_sensor owsim_engine owsim_io owsim_facade
         EXPORT owsimTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         INCLUDES DESTINATION include/owsim)

@@ -1,6 +1,7 @@
-# owsim_add_module(NAME PUBLIC_DEPS ... PRIVATE_DEPS ...)
-# One static library per top-level folder: NAME/*.cpp, headers beside them, included as
-# "NAME/header.hpp" from the repository root. Installed headers go to include/owsim/NAME/.
+# owsim_add_module(NAME [FOLDER DIR] PUBLIC_DEPS ... PRIVATE_DEPS ...)
+# One static library owsim_NAME per top-level folder: DIR/*.cpp (DIR = NAME unless given), headers
+# beside them, included as "DIR/header.hpp" from the repository root. Installed headers go to
+# include/owsim/DIR/.
 function(owsim_set_warnings target)
   target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow -Wconversion
                          -Wno-sign-conversion)
@@ -14,9 +15,13 @@ function(owsim_set_codegen target)
 endfunction()
 
 function(owsim_add_module name)
-  cmake_parse_arguments(ARG "" "" "PUBLIC_DEPS;PRIVATE_DEPS" ${ARGN})
-  file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/${name}/*.cpp)
-  file(GLOB headers CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/${name}/*.hpp)
+  cmake_parse_arguments(ARG "" "FOLDER" "PUBLIC_DEPS;PRIVATE_DEPS" ${ARGN})
+  set(folder ${name})
+  if(ARG_FOLDER)
+    set(folder ${ARG_FOLDER})
+  endif()
+  file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/${folder}/*.cpp)
+  file(GLOB headers CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/${folder}/*.hpp)
   add_library(owsim_${name} STATIC ${sources} ${headers})
   add_library(owsim::${name} ALIAS owsim_${name})
   set_target_properties(owsim_${name} PROPERTIES EXPORT_NAME ${name} LINKER_LANGUAGE CXX)
@@ -29,5 +34,5 @@ function(owsim_add_module name)
   if(OWSIM_LTO_FLAGS)
     target_compile_options(owsim_${name} PRIVATE ${OWSIM_LTO_FLAGS} -ffat-lto-objects)
   endif()
-  install(FILES ${headers} DESTINATION include/owsim/${name})
+  install(FILES ${headers} DESTINATION include/owsim/${folder})
 endfunction()

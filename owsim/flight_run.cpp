@@ -1,0 +1,190 @@
+#include "owsim/flight_run.hpp"
+
+#include <chrono>
+#include <utility>
+#include <vector>
+
+#include "geometry/error.hpp"
+#include "io/run_checkpoint.hpp"
+#include "owsim/version.hpp"
+
+namespace owsim {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// "d64,points,…": the outputs in a fixed order.
+std::string output_list(const std::set<OutputKind>& outputs) {
+  static constexpr std::pair<OutputKind, const char*> kNames[] = {
+      {OutputKind::d64, "d64"},
+      {OutputKind::points, "points"},
+      {OutputKind::trajectory, "trajectory"},
+      {OutputKind::summary, "summary"},
+      {OutputKind::quicklook, "quicklook"}};
+  std::string list;
+  for (const auto& [kind, name] : kNames) {
+    if (!outputs.contains(kind)) continue;
+    if (!list.empty()) list += ',';
+    list += name;
+  }
+  return list;
+}
+
+// What makes a run's output bytes (io/run_checkpoint.hpp `run`): owsim's version, the scenario's
+// text and the files it reads, and the options that change bytes. Not the thread count, which
+// changes none.
+nlohmann::json run_fingerprint(const FlightSetup& setup, const SimulationOptions& simulation,
+                               const std::string& source_hash, const RunOptions& options) {
+  nlohmann::json run = {{"owsim_version", version_string},
+                        {"scenario_file", source_hash},
+                        {"seed", setup.scenario.seed},
+                        {"no_noise", simulation.no_noise},
+                        {"frames", setup.frames},
+                        {"outputs", output_list(options.outputs)}};
+  if (setup.scenario.trajectory.source == TrajectorySpec::Source::file) {
+    ContentHash trajectory_file;
+    trajectory_file.add_file(setup.scenario.trajectory.file);
+    run["trajectory_file"] = trajectory_file.hex();
+  }
+  if (setup.scenario.scene.terrain.kind == TerrainKind::grid) {
+    const HeightGrid& grid = setup.scenario.scene.terrain.grid;
+    ContentHash terrain;
+    const double shape[] = {static_cast<double>(grid.ncols),
+                            static_cast<double>(grid.nrows),
+                            grid.x_west_m,
+                            grid.y_south_m,
+                            grid.cellsize_m,
+                            grid.nodata.value_or(0.0)};
+    terrain.add(shape, sizeof shape);
+    terrain.add(grid.heights.data(), grid.heights.size() * sizeof(double));
+    run["terrain_grid"] = terrain.hex();
+  }
+  return run;
+}
+
+// The checkpoint a resumed run continues from, compared with this run; std::nullopt (and a
+// notice) if the folder has none.
+std::optional<RunCheckpoint> checkpoint_to_resume(const FlightOutputOptions& output_options,
+                                                  std::int64_t frames, const RunOptions& options) {
+  const std::filesystem::path path = run_checkpoint_path(output_options.directory);
+  std::optional<RunCheckpoint> checkpoint = read_run_checkpoint(path);
+  if (!checkpoint) {
+    if (options.notice) {
+      options.notice("no checkpoint " + path.string() + ": starting from frame 0");
+    }
+    return std::nullopt;
+  }
+  require_same_run(path, checkpoint->run, output_options.checkpoint_run);
+  if (checkpoint->frames_done > frames) {
+    throw input_error(path.string(),
+                      "damaged checkpoint: " + std::to_string(checkpoint->frames_done) +
+                          " frames done of " + std::to_string(frames));
+  }
+  if (options.notice) {
+    options.notice("resuming " + output_options.directory.string() + " at frame " +
+                   std::to_string(checkpoint->frames_done) + " of " + std::to_string(frames));
+  }
+  return checkpoint;
+}
+
+}  // namespace
+
+FlightOutputOptions flight_output_options(const FlightSetup& setup,
+                                          const std::optional<std::filesystem::path>& out,
+                                          const std::set<OutputKind>& outputs) {
+  FlightOutputOptions output_options;
+  output_options.directory = out ? *out : std::filesystem::path("out") / setup.scenario.name;
+  output_options.outputs = outputs;
+  output_options.map_region = setup.flown.merged(scene_extent(setup.scene));
+  output_options.map_region.min().array() -= 50.0;  // a margin around what was flown and built
+  output_options.map_region.max().array() += 50.0;
+  return output_options;
+}
+
+void simulate_frames(const FrameSimulator& simulator, const FlightSetup& setup,
+                     const FlightRange& range, int threads, FlightOutputs& outputs,
+                     const std::function<void(std::int64_t)>& frame_done) {
+  // Each frame is itself simulated in parallel, so one frame per thread keeps every core busy;
+  // more frames in flight only add their buffers (4.1 MB each on the corridor: pulses, rays and
+  // returns) to what competes with the scene for the cache. `owsim bench` on the corridor with 2
+  // threads: 19.9-20.0 M pulses/s with 2 frames in flight, 19.2-19.4 M with 3, 19.0-19.4 M with
+  // 1; single-threaded, 10.1-10.2 M with 1 frame in flight and 9.8 M with 2.
+  const int frames_in_flight = std::max(1, threads);
+  // One encoding per buffer of the pipeline: a frame is encoded where it is simulated, in the
+  // parallel stage, and the in-order sink only appends its bytes. The words and the summary's
+  // tally are encoded block by block while the simulation has the block's pulses and returns in
+  // cache; the rest (points, HELLAS header) once the frame is whole.
+  std::vector<FrameEncoding> encodings(static_cast<std::size_t>(frames_in_flight));
+  for (FrameEncoding& encoding : encodings) outputs.size_encoding(encoding);
+  std::int64_t done = 0;
+  run_flight(
+      simulator, setup.trajectory, range, frames_in_flight,
+      [&](const FrameResult& frame, int begin, int end) {
+        outputs.encode_pulses(frame.view(), begin, end,
+                              encodings[static_cast<std::size_t>(frame.buffer)]);
+      },
+      [&](const FrameResult& frame) {
+        outputs.finish_encoding(frame.view(),
+                                setup.trajectory.pose_at(frame.pulses.front().time_s),
+                                encodings[static_cast<std::size_t>(frame.buffer)]);
+      },
+      [&](const FrameResult& frame) {
+        outputs.add_frame(frame.view(), encodings[static_cast<std::size_t>(frame.buffer)]);
+        ++done;
+        if (frame_done) frame_done(done);
+      });
+}
+
+RunReport run_flight_outputs(const FlightSetup& setup, const SimulationOptions& simulation,
+                             const std::string& source_hash, const RunOptions& options,
+                             int threads) {
+  const Scenario& scenario = setup.scenario;
+  const std::int64_t frames = setup.frames;
+  FlightOutputOptions output_options = flight_output_options(setup, options.out, options.outputs);
+  if (!source_hash.empty()) {
+    output_options.checkpoint_run = run_fingerprint(setup, simulation, source_hash, options);
+  } else if (options.resume) {
+    throw Error(scenario.name +
+                ": resume: a scenario built in code keeps no checkpoint; open it from a file or "
+                "from YAML text to resume its runs");
+  }
+  std::optional<RunCheckpoint> checkpoint;
+  if (options.resume) checkpoint = checkpoint_to_resume(output_options, frames, options);
+  FlightOutputs outputs(output_options, setup.scene, scenario.scan, setup.local_frame,
+                        checkpoint ? &*checkpoint : nullptr);
+  const std::int64_t first = outputs.frames_done();
+
+  const auto pulses_per_frame = static_cast<std::uint64_t>(scenario.scan.pulses_per_frame());
+  const auto start = Clock::now();
+  simulate_frames(setup.simulator, setup, FlightRange{first, frames - first}, threads, outputs,
+                  [&](std::int64_t done) {
+                    if (!options.progress) return;
+                    options.progress(RunProgress{
+                        first + done, frames, first,
+                        std::chrono::duration<double>(Clock::now() - start).count()});
+                  });
+  const double wall_s = std::chrono::duration<double>(Clock::now() - start).count();
+
+  RunReport report;
+  report.directory = output_options.directory;
+  report.frames = frames;
+  report.first_frame = first;
+  report.pulses = static_cast<std::uint64_t>(frames) * pulses_per_frame;
+  report.wall_s = wall_s;
+  const auto simulated =
+      static_cast<double>(static_cast<std::uint64_t>(frames - first) * pulses_per_frame);
+  report.pulses_per_s = wall_s > 0 ? simulated / wall_s : 0.0;
+  report.realtime_factor = report.pulses_per_s / scenario.scan.prf_hz;
+  report.threads = threads;
+
+  outputs.finish({{"scenario", scenario.name},
+                  {"seed", scenario.seed},
+                  {"wall_s", report.wall_s},
+                  {"pulses_per_s", report.pulses_per_s},
+                  {"realtime_factor", report.realtime_factor},
+                  {"threads", threads},
+                  {"version", version_string}});
+  return report;
+}
+
+}  // namespace owsim

@@ -1,0 +1,16 @@
+#pragma once
+// owsim — the MilOWS / HELLAS obstacle-warning LiDAR simulator as a library. The one include an
+// embedding program needs (after find_package(owsim), target owsim::owsim):
+//
+//   owsim::Simulation sim = owsim::Simulation::open("corridor.yaml");
+//   owsim::Frame frame;
+//   for (std::int64_t k = 0; k < sim.frame_count(); ++k) {
+//     sim.simulate_frame(k, frame);  // frame.word_bytes(), frame.returns(), frame.pulses(), …
+//   }
+//
+// owsim/simulation.hpp says what each call does, its errors and its threading contract;
+// docs/embedding.md shows the same in C and Python.
+#include "io/scenario.hpp"
+#include "owsim/frame.hpp"
+#include "owsim/simulation.hpp"
+#include "owsim/version.hpp"

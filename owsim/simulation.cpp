@@ -1,0 +1,208 @@
+#include "owsim/simulation.hpp"
+
+#include <tbb/info.h>
+#include <tbb/task_arena.h>
+
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "geometry/error.hpp"
+#include "io/run_checkpoint.hpp"
+#include "io/scenario_check.hpp"
+#include "io/scenario_loader.hpp"
+#include "sensor/scan_pattern.hpp"
+
+namespace owsim {
+namespace {
+
+int worker_count(const SimulationOptions& options) {
+  return options.threads > 0 ? options.threads : tbb::info::default_concurrency();
+}
+
+std::string hash_of_text(std::string_view text) {
+  ContentHash hash;
+  hash.add(text.data(), text.size());
+  return hash.hex();
+}
+
+std::string hash_of_file(const std::filesystem::path& path) {
+  ContentHash hash;
+  hash.add_file(path);
+  return hash.hex();
+}
+
+// A scenario built in code, checked and completed as the loader completes what it reads.
+Scenario checked(Scenario scenario) {
+  if (scenario.name.empty() && !scenario.path.empty()) scenario.name = scenario.path.stem().string();
+  scenario.scan.counter = scenario.receiver.counter;
+  scenario.scan.start_s = scenario.trajectory.start_s;
+  try {
+    validate_scenario(scenario);
+  } catch (const FileError&) {
+    throw;
+  } catch (const Error& error) {
+    throw input_error(scenario.name.empty() ? "scenario" : scenario.name, error.what());
+  }
+  return scenario;
+}
+
+std::string text_of(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6f", value);
+  return text;
+}
+
+// The host's samples as a trajectory over frame `frame`; throws "poses: …" for samples that do
+// not cover the frame or leave the area the scene was built for.
+Trajectory pushed_trajectory(const FlightSetup& setup, std::int64_t frame,
+                             std::span<const PoseSample> poses) {
+  if (frame < 0) throw input_error("frame", "must be ≥ 0, got " + std::to_string(frame));
+  const ScanParams& scan = setup.scenario.scan;
+  const double first = pulse_time_s(scan, frame, 0);
+  const double last = pulse_time_s(scan, frame, scan.pulses_per_frame() - 1);
+  if (poses.size() < 2) {
+    throw input_error("poses", "need at least 2 samples covering frame " + std::to_string(frame) +
+                                   " (" + text_of(first) + "–" + text_of(last) + " s), got " +
+                                   std::to_string(poses.size()));
+  }
+  NavTrack track;
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    const PoseSample& pose = poses[i];
+    const Eigen::Vector3d position(pose.e_m, pose.n_m, pose.u_m);
+    if (setup.scenario.scene.terrain.kind != TerrainKind::none && position.allFinite() &&
+        !setup.area.contains(position.head<2>())) {
+      throw input_error("poses[" + std::to_string(i) + "]",
+                        "position (" + text_of(pose.e_m) + ", " + text_of(pose.n_m) +
+                            ") m lies outside the area the terrain was built for; give "
+                            "SimulationOptions::flight_area_enu_m");
+    }
+    track.time_s.push_back(pose.time_s);
+    track.position_enu_m.push_back(position);
+    track.attitude.push_back(Attitude{pose.roll_deg, pose.pitch_deg, pose.heading_deg});
+  }
+  if (!(poses.front().time_s <= first && poses.back().time_s >= last)) {
+    throw input_error("poses", "cover " + text_of(poses.front().time_s) + "–" +
+                                   text_of(poses.back().time_s) + " s; frame " +
+                                   std::to_string(frame) + " needs " + text_of(first) + "–" +
+                                   text_of(last) + " s");
+  }
+  TrajectoryOptions options;
+  options.smoothing.window = 1;  // the host's poses are taken as exact
+  options.irs_noise = setup.scenario.trajectory.irs_noise;
+  options.seed = setup.scenario.seed;
+  try {
+    return Trajectory(track, setup.local_frame, options);
+  } catch (const Error& error) {
+    std::string message = error.what();  // "trajectory record <i>: <problem>"
+    if (message.starts_with("trajectory record ")) {
+      const std::size_t colon = message.find(':');
+      message = "poses[" + message.substr(18, colon - 18) + "]" + message.substr(colon);
+    }
+    throw Error(message);
+  }
+}
+
+}  // namespace
+
+struct Simulation::State {
+  State(Scenario scenario, const SimulationOptions& options_in, std::string hash)
+      : options(options_in),
+        source_hash(std::move(hash)),
+        setup(std::move(scenario), options),
+        threads(worker_count(options)),
+        arena(threads),
+        ids(owsim::object_ids(setup.scene)) {}
+
+  SimulationOptions options;
+  std::string source_hash;  // of the scenario's text; empty for a scenario built in code
+  FlightSetup setup;
+  int threads;
+  mutable tbb::task_arena arena;
+  std::vector<std::string> ids;
+
+  void simulate(std::int64_t frame, const PoseSource& poses, Frame& out) const {
+    arena.execute([&] { setup.simulator.simulate(frame, poses, out.result_); });
+    out.encode(setup.scenario.scan, setup.local_frame);
+  }
+};
+
+Simulation::Simulation(std::unique_ptr<State> state) : state_(std::move(state)) {}
+Simulation::Simulation(Simulation&&) noexcept = default;
+Simulation& Simulation::operator=(Simulation&&) noexcept = default;
+Simulation::~Simulation() = default;
+
+Simulation Simulation::open(const std::filesystem::path& scenario_file,
+                            const SimulationOptions& options) {
+  Scenario scenario = load_scenario(scenario_file);
+  return Simulation(
+      std::make_unique<State>(std::move(scenario), options, hash_of_file(scenario_file)));
+}
+
+Simulation Simulation::from_yaml(std::string_view yaml, const std::filesystem::path& name,
+                                 const SimulationOptions& options) {
+  Scenario scenario = load_scenario_text(yaml, name);
+  return Simulation(std::make_unique<State>(std::move(scenario), options, hash_of_text(yaml)));
+}
+
+Simulation Simulation::from_scenario(Scenario scenario, const SimulationOptions& options) {
+  return Simulation(std::make_unique<State>(checked(std::move(scenario)), options, std::string()));
+}
+
+const Scenario& Simulation::scenario() const { return state_->setup.scenario; }
+SensorModel Simulation::model() const { return state_->setup.scenario.scan.model; }
+std::int64_t Simulation::frame_count() const { return state_->setup.frames; }
+int Simulation::pulses_per_frame() const { return state_->setup.scenario.scan.pulses_per_frame(); }
+double Simulation::frame_start_s(std::int64_t frame) const {
+  return pulse_time_s(state_->setup.scenario.scan, frame, 0);
+}
+double Simulation::frame_end_s(std::int64_t frame) const {
+  return pulse_time_s(state_->setup.scenario.scan, frame, pulses_per_frame() - 1);
+}
+const std::vector<std::string>& Simulation::object_ids() const { return state_->ids; }
+int Simulation::threads() const { return state_->threads; }
+const FlightSetup& Simulation::setup() const { return state_->setup; }
+
+PoseSample Simulation::enu_from_geodetic(double lat_deg, double lon_deg, double h_m) const {
+  const Eigen::Vector3d enu = state_->setup.local_frame.enu_from_geodetic({lat_deg, lon_deg, h_m});
+  PoseSample sample;
+  sample.e_m = enu.x();
+  sample.n_m = enu.y();
+  sample.u_m = enu.z();
+  return sample;
+}
+
+Frame Simulation::simulate_frame(std::int64_t frame) const {
+  Frame out;
+  simulate_frame(frame, out);
+  return out;
+}
+
+void Simulation::simulate_frame(std::int64_t frame, Frame& out) const {
+  if (frame < 0 || frame >= frame_count()) {
+    throw input_error("frame", std::to_string(frame) + " is out of range: the flight has frames 0.." +
+                                   std::to_string(frame_count() - 1));
+  }
+  state_->simulate(frame, state_->setup.trajectory, out);
+}
+
+Frame Simulation::simulate_frame(std::int64_t frame, std::span<const PoseSample> poses) const {
+  Frame out;
+  simulate_frame(frame, poses, out);
+  return out;
+}
+
+void Simulation::simulate_frame(std::int64_t frame, std::span<const PoseSample> poses,
+                                Frame& out) const {
+  const Trajectory trajectory = pushed_trajectory(state_->setup, frame, poses);
+  state_->simulate(frame, trajectory, out);
+}
+
+RunReport Simulation::run(const RunOptions& options) const {
+  return state_->arena.execute([&] {
+    return run_flight_outputs(state_->setup, state_->options, state_->source_hash, options,
+                              state_->threads);
+  });
+}
+
+}  // namespace owsim
