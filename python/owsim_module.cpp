@@ -1,0 +1,344 @@
+// The Python module `owsim` (INTERFACE.md "Embedding"): a thin shell over owsim::Simulation.
+// Frames come back as numpy views into the frame's own buffers (the Frame object owns them; each
+// array keeps its Frame alive), with named dtypes: returns by the points.csv columns, pulses by
+// `owsim pattern`'s, words as uint64 (MilOWS) or uint32 (HELLAS). The GIL is released while owsim
+// works. owsim::FileError → OSError, other owsim::Error → ValueError, a frame out of range →
+// IndexError; each with owsim's one-line message.
+#include <pybind11/functional.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include <cstddef>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "geometry/error.hpp"
+#include "owsim/simulation.hpp"
+#include "owsim/version.hpp"
+
+namespace py = pybind11;
+
+namespace owsim {
+namespace {
+
+struct Field {
+  const char* name;
+  const char* format;
+  std::size_t offset;
+};
+
+py::dtype record_dtype(const std::vector<Field>& fields, std::size_t itemsize) {
+  py::list names, formats, offsets;
+  for (const Field& field : fields) {
+    names.append(field.name);
+    formats.append(field.format);
+    offsets.append(field.offset);
+  }
+  py::dict spec;
+  spec["names"] = names;
+  spec["formats"] = formats;
+  spec["offsets"] = offsets;
+  spec["itemsize"] = itemsize;
+  return py::dtype::from_args(spec);
+}
+
+// points.csv's columns, in their order; `class` is the class code (owsim.CLASS_NAMES), `object`
+// the index into Simulation.object_ids.
+py::dtype returns_dtype() {
+  using R = ReturnRecord;
+  // Made once and never freed: a static py::dtype would be released after the interpreter.
+  static const py::dtype& dtype = *new py::dtype(record_dtype(
+      {{"frame", "<i8", offsetof(R, frame)},
+       {"pulse", "<i4", offsetof(R, pulse)},
+       {"line", "<i4", offsetof(R, line)},
+       {"fiber", "<i4", offsetof(R, fiber)},
+       {"return", "<i4", offsetof(R, return_number)},
+       {"time_s", "<f8", offsetof(R, time_s)},
+       {"range_m", "<f8", offsetof(R, range_m)},
+       {"counter", "<u2", offsetof(R, counter)},
+       {"e_m", "<f8", offsetof(R, e_m)},
+       {"n_m", "<f8", offsetof(R, n_m)},
+       {"u_m", "<f8", offsetof(R, u_m)},
+       {"lat_deg", "<f8", offsetof(R, lat_deg)},
+       {"lon_deg", "<f8", offsetof(R, lon_deg)},
+       {"h_m", "<f8", offsetof(R, h_m)},
+       {"class", "u1", offsetof(R, surface)},
+       {"object", "<u4", offsetof(R, object)},
+       {"energy_rel", "<f8", offsetof(R, energy_rel)},
+       {"incidence_deg", "<f8", offsetof(R, incidence_deg)},
+       {"number_of_returns", "u1", offsetof(R, number_of_returns)}},
+      sizeof(R)));
+  return dtype;
+}
+
+// `owsim pattern`'s columns (and the slot within the line).
+py::dtype pulses_dtype() {
+  // Made once and never freed: a static py::dtype would be released after the interpreter.
+  static const py::dtype& dtype = *new py::dtype(record_dtype(
+      {{"pulse", "<i4", offsetof(Pulse, index)},
+       {"line", "<i4", offsetof(Pulse, line)},
+       {"slot", "<i4", offsetof(Pulse, slot)},
+       {"fiber", "<i4", offsetof(Pulse, fiber)},
+       {"reference", "?", offsetof(Pulse, reference)},
+       {"time_s", "<f8", offsetof(Pulse, time_s)},
+       {"alpha_deg", "<f8", offsetof(Pulse, alpha_deg)},
+       {"mirror_beta_deg", "<f8", offsetof(Pulse, mirror_beta_deg)},
+       {"beta_deg", "<f8", offsetof(Pulse, beta_deg)},
+       {"encoder", "<u4", offsetof(Pulse, encoder)},
+       {"fg", "?", offsetof(Pulse, frame_gate)},
+       {"lg", "?", offsetof(Pulse, line_gate)},
+       {"movdir", "<i4", offsetof(Pulse, mov_dir)}},
+      sizeof(Pulse)));
+  return dtype;
+}
+
+py::dtype rays_dtype() {
+  static_assert(sizeof(PulseRay) == 6 * sizeof(double));
+  static const py::dtype& dtype = *new py::dtype(
+      record_dtype({{"origin_enu_m", "(3,)<f8", 0}, {"dir_enu", "(3,)<f8", 3 * sizeof(double)}},
+                   sizeof(PulseRay)));
+  return dtype;
+}
+
+// A read-only numpy view of `count` items at `data`, kept alive by `owner`.
+py::array view(const py::dtype& dtype, const void* data, std::size_t count, py::handle owner) {
+  py::array array(dtype, {static_cast<py::ssize_t>(count)}, {}, data, owner);
+  py::detail::array_proxy(array.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+  return array;
+}
+
+// Pose samples from a structured array with the PoseSample fields, or an (N, 7) float array with
+// columns time_s, e_m, n_m, u_m, roll_deg, pitch_deg, heading_deg.
+std::vector<PoseSample> pose_samples(const py::array& poses) {
+  static const char* kNames[] = {"time_s",   "e_m",       "n_m",        "u_m",
+                                 "roll_deg", "pitch_deg", "heading_deg"};
+  std::vector<PoseSample> samples;
+  if (poses.dtype().attr("names").is_none()) {
+    const auto table = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(poses);
+    if (!table || table.ndim() != 2 || table.shape(1) != 7) {
+      throw py::value_error(
+          "poses: expected an (N, 7) array of time_s, e_m, n_m, u_m, roll_deg, pitch_deg, "
+          "heading_deg, or a structured array with those fields");
+    }
+    samples.resize(static_cast<std::size_t>(table.shape(0)));
+    const auto cells = table.unchecked<2>();
+    for (py::ssize_t i = 0; i < table.shape(0); ++i) {
+      double* out = &samples[static_cast<std::size_t>(i)].time_s;
+      for (py::ssize_t c = 0; c < 7; ++c) out[c] = cells(i, c);
+    }
+    return samples;
+  }
+  samples.resize(static_cast<std::size_t>(poses.size()));
+  for (std::size_t c = 0; c < 7; ++c) {
+    py::object column;
+    try {
+      column = poses[py::str(kNames[c])];
+    } catch (const py::error_already_set&) {
+      throw py::value_error(std::string("poses: the structured array has no field '") +
+                            kNames[c] + "'");
+    }
+    const auto values = py::array_t<double, py::array::forcecast>::ensure(column);
+    const auto cells = values.unchecked<1>();
+    for (py::ssize_t i = 0; i < values.shape(0); ++i) {
+      (&samples[static_cast<std::size_t>(i)].time_s)[c] = cells(i);
+    }
+  }
+  return samples;
+}
+
+SimulationOptions simulation_options(int threads, std::optional<std::int64_t> frames,
+                                     std::optional<double> duration_s,
+                                     std::optional<std::uint64_t> seed, bool no_noise) {
+  SimulationOptions options;
+  options.threads = threads;
+  options.frames = frames;
+  options.duration_s = duration_s;
+  options.seed = seed;
+  options.no_noise = no_noise;
+  return options;
+}
+
+py::dict report_dict(const RunReport& report) {
+  py::dict out;
+  out["directory"] = report.directory.string();
+  out["frames"] = report.frames;
+  out["first_frame"] = report.first_frame;
+  out["pulses"] = report.pulses;
+  out["wall_s"] = report.wall_s;
+  out["pulses_per_s"] = report.pulses_per_s;
+  out["realtime_factor"] = report.realtime_factor;
+  out["threads"] = report.threads;
+  return out;
+}
+
+// Frames 0..frame_count−1 of a simulation, one new Frame each.
+struct FrameIterator {
+  std::shared_ptr<const Simulation> simulation;
+  std::int64_t next = 0;
+};
+
+std::shared_ptr<Frame> simulate(const Simulation& simulation, std::int64_t k) {
+  if (k < 0 || k >= simulation.frame_count()) {
+    throw py::index_error("frame " + std::to_string(k) + " is out of range: the flight has frames 0.." +
+                          std::to_string(simulation.frame_count() - 1));
+  }
+  auto frame = std::make_shared<Frame>();
+  py::gil_scoped_release unlocked;
+  simulation.simulate_frame(k, *frame);
+  return frame;
+}
+
+}  // namespace
+}  // namespace owsim
+
+PYBIND11_MODULE(owsim, m) {
+  using namespace owsim;
+  m.doc() = "owsim: the MilOWS / HELLAS obstacle-warning LiDAR simulator (docs/embedding.md)";
+  m.attr("__version__") = version_string;
+  m.attr("CLASS_NAMES") = py::make_tuple("wire", "pole", "tree", "ground");
+  m.attr("UNKNOWN_CLASS") = kUnknownSurface;
+
+  py::register_exception_translator([](std::exception_ptr error) {
+    try {
+      if (error) std::rethrow_exception(error);
+    } catch (const FileError& e) {
+      PyErr_SetString(PyExc_OSError, e.what());
+    } catch (const Error& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    }
+  });
+
+  py::class_<Frame, std::shared_ptr<Frame>>(m, "Frame",
+                                            "One simulated frame; its arrays are read-only views "
+                                            "into buffers the Frame owns.")
+      .def_property_readonly("index", &Frame::index)
+      .def_property_readonly("model",
+                             [](const Frame& f) { return std::string(to_string(f.model())); })
+      .def_property_readonly(
+          "words",
+          [](py::object self) {
+            const Frame& f = self.cast<const Frame&>();
+            if (f.model() == SensorModel::hellas) {
+              return view(py::dtype::of<std::uint32_t>(), f.hellas_words().data(),
+                          f.hellas_words().size(), self);
+            }
+            return view(py::dtype::of<std::uint64_t>(), f.milows_words().data(),
+                        f.milows_words().size(), self);
+          },
+          "The sensor's words, one a pulse, as in flight.d64 (uint64) or flight.hellas (uint32)")
+      .def_property_readonly(
+          "returns",
+          [](py::object self) {
+            const Frame& f = self.cast<const Frame&>();
+            return view(returns_dtype(), f.returns().data(), f.returns().size(), self);
+          },
+          "Every detected return: a structured array named by the points.csv columns")
+      .def_property_readonly(
+          "pulses",
+          [](py::object self) {
+            const Frame& f = self.cast<const Frame&>();
+            return view(pulses_dtype(), f.pulses().data(), f.pulses().size(), self);
+          },
+          "Every pulse of the frame, firing order (`owsim pattern`'s columns)")
+      .def_property_readonly(
+          "rays",
+          [](py::object self) {
+            const Frame& f = self.cast<const Frame&>();
+            return view(rays_dtype(), f.rays().data(), f.rays().size(), self);
+          },
+          "The central ray of every pulse: origin_enu_m (m) and dir_enu (unit)")
+      .def("__repr__", [](const Frame& f) {
+        return "<owsim.Frame " + std::to_string(f.index()) + ": " +
+               std::to_string(f.pulses().size()) + " pulses, " +
+               std::to_string(f.returns().size()) + " returns>";
+      });
+
+  py::class_<FrameIterator>(m, "FrameIterator")
+      .def("__iter__", [](FrameIterator& it) -> FrameIterator& { return it; })
+      .def("__next__", [](FrameIterator& it) {
+        if (it.next >= it.simulation->frame_count()) throw py::stop_iteration();
+        return simulate(*it.simulation, it.next++);
+      });
+
+  py::class_<Simulation, std::shared_ptr<Simulation>>(
+      m, "Simulation", "A scenario set up once, simulated frame by frame or run whole")
+      .def(py::init([](const std::filesystem::path& scenario, int threads,
+                       std::optional<std::int64_t> frames, std::optional<double> duration_s,
+                       std::optional<std::uint64_t> seed, bool no_noise) {
+             const SimulationOptions options =
+                 simulation_options(threads, frames, duration_s, seed, no_noise);
+             py::gil_scoped_release unlocked;
+             return std::make_shared<Simulation>(Simulation::open(scenario, options));
+           }),
+           py::arg("scenario"), py::kw_only(), py::arg("threads") = 0,
+           py::arg("frames") = py::none(), py::arg("duration_s") = py::none(),
+           py::arg("seed") = py::none(), py::arg("no_noise") = false)
+      .def_static(
+          "from_yaml",
+          [](const std::string& yaml, const std::filesystem::path& name, int threads,
+             std::optional<std::int64_t> frames, std::optional<double> duration_s,
+             std::optional<std::uint64_t> seed, bool no_noise) {
+            const SimulationOptions options =
+                simulation_options(threads, frames, duration_s, seed, no_noise);
+            py::gil_scoped_release unlocked;
+            return std::make_shared<Simulation>(Simulation::from_yaml(yaml, name, options));
+          },
+          py::arg("yaml"), py::arg("name") = "scenario.yaml", py::kw_only(),
+          py::arg("threads") = 0, py::arg("frames") = py::none(),
+          py::arg("duration_s") = py::none(), py::arg("seed") = py::none(),
+          py::arg("no_noise") = false)
+      .def_property_readonly("frame_count", &Simulation::frame_count)
+      .def_property_readonly("pulses_per_frame", &Simulation::pulses_per_frame)
+      .def_property_readonly("model",
+                             [](const Simulation& s) { return std::string(to_string(s.model())); })
+      .def_property_readonly("name", [](const Simulation& s) { return s.scenario().name; })
+      .def_property_readonly("seed", [](const Simulation& s) { return s.scenario().seed; })
+      .def_property_readonly("object_ids", &Simulation::object_ids)
+      .def_property_readonly("threads", &Simulation::threads)
+      .def("frame_start_s", &Simulation::frame_start_s, py::arg("frame"))
+      .def("frame_end_s", &Simulation::frame_end_s, py::arg("frame"))
+      .def(
+          "frame",
+          [](const Simulation& s, std::int64_t k, std::optional<py::array> poses) {
+            if (!poses) return simulate(s, k);
+            const std::vector<PoseSample> samples = pose_samples(*poses);
+            auto frame = std::make_shared<Frame>();
+            py::gil_scoped_release unlocked;
+            s.simulate_frame(k, samples, *frame);
+            return frame;
+          },
+          py::arg("k"), py::arg("poses") = py::none(),
+          "Frame k along the scenario's trajectory, or (co-simulation) flown through `poses`")
+      .def("__len__", [](const Simulation& s) { return s.frame_count(); })
+      .def("__iter__",
+           [](std::shared_ptr<const Simulation> s) { return FrameIterator{std::move(s), 0}; })
+      .def(
+          "run",
+          [](const Simulation& s, std::optional<std::filesystem::path> out,
+             std::optional<std::string> outputs, bool resume,
+             std::function<void(std::int64_t, std::int64_t)> progress) {
+            RunOptions run;
+            run.out = std::move(out);
+            if (outputs) run.outputs = parse_output_list(*outputs);
+            run.resume = resume;
+            if (progress) {
+              run.progress = [progress](const RunProgress& at) {
+                py::gil_scoped_acquire locked;
+                progress(at.frames_done, at.frames_total);
+              };
+            }
+            RunReport report;
+            {
+              py::gil_scoped_release unlocked;
+              report = s.run(run);
+            }
+            return report_dict(report);
+          },
+          py::arg("out") = py::none(), py::kw_only(), py::arg("outputs") = py::none(),
+          py::arg("resume") = false, py::arg("progress") = py::none(),
+          "What `owsim run` does; returns the run's report as a dict");
+}
