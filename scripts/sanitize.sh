@@ -1,13 +1,17 @@
 #!/usr/bin/env bash
 # Builds the tests with AddressSanitizer + UndefinedBehaviorSanitizer (-O1, any UB is fatal) into
-# build-asan/ and runs them. Embree, TBB and the other system libraries are not instrumented.
+# build-asan/ and runs them: the C ABI's tests through the instrumented libowsim_c.so, the Python
+# module's in /usr/bin/python3 with the sanitizer runtimes preloaded (tests/CMakeLists.txt).
+# Embree, TBB and the other system libraries are not instrumented.
 # OWSIM_SANITIZE_EXCLUDE is a ctest regex of tests left out (default: none).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build="${OWSIM_SANITIZE_BUILD_DIR:-$root/build-asan}"
 flags="-O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=undefined"
+link="-fsanitize=address,undefined"
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Debug \
-  -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
+  -DCMAKE_C_FLAGS="$flags" -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="$link" \
+  -DCMAKE_SHARED_LINKER_FLAGS="$link" -DCMAKE_MODULE_LINKER_FLAGS="$link" \
   -DOWSIM_BUILD_BENCH=OFF >/dev/null
 cmake --build "$build" -j "$(nproc)"
 # Leak checking is on: the whole suite runs leak-free, TBB and Embree included.
