@@ -12,6 +12,7 @@
 
 #include <cstddef>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -181,12 +182,47 @@ struct FrameIterator {
   std::int64_t next = 0;
 };
 
+// Frames whose Python objects are gone, kept for the next sim.frame(): a new Frame's buffers
+// (~9 MB on the corridor) would otherwise be fresh pages every frame. A pooled Frame has no views
+// left (every array keeps its Frame alive), so refilling it changes nothing a caller holds.
+class FramePool {
+ public:
+  std::shared_ptr<Frame> take() {
+    std::unique_ptr<Frame> frame;
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      if (!free_.empty()) {
+        frame = std::move(free_.back());
+        free_.pop_back();
+      }
+    }
+    if (!frame) frame = std::make_unique<Frame>();
+    return {frame.release(), [this](Frame* done) { give_back(done); }};
+  }
+
+ private:
+  static constexpr std::size_t kKept = 4;
+  void give_back(Frame* frame) {
+    std::unique_ptr<Frame> owned(frame);
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (free_.size() < kKept) free_.push_back(std::move(owned));
+  }
+  std::mutex mutex_;
+  std::vector<std::unique_ptr<Frame>> free_;
+};
+
+// Never destroyed: frames may come back after the interpreter (and static destructors) are done.
+FramePool& frame_pool() {
+  static FramePool& pool = *new FramePool;
+  return pool;
+}
+
 std::shared_ptr<Frame> simulate(const Simulation& simulation, std::int64_t k) {
   if (k < 0 || k >= simulation.frame_count()) {
     throw py::index_error("frame " + std::to_string(k) + " is out of range: the flight has frames 0.." +
                           std::to_string(simulation.frame_count() - 1));
   }
-  auto frame = std::make_shared<Frame>();
+  std::shared_ptr<Frame> frame = frame_pool().take();
   py::gil_scoped_release unlocked;
   simulation.simulate_frame(k, *frame);
   return frame;
@@ -306,7 +342,7 @@ PYBIND11_MODULE(owsim, m) {
           [](const Simulation& s, std::int64_t k, std::optional<py::array> poses) {
             if (!poses) return simulate(s, k);
             const std::vector<PoseSample> samples = pose_samples(*poses);
-            auto frame = std::make_shared<Frame>();
+            std::shared_ptr<Frame> frame = frame_pool().take();
             py::gil_scoped_release unlocked;
             s.simulate_frame(k, samples, *frame);
             return frame;
