@@ -1,7 +1,5 @@
 // The C ABI (capi/owsim/owsim.h): opaque handles over owsim::Simulation and owsim::Frame, one
 // catch-all boundary per call (guarded) so no exception leaves, a per-thread last error.
-#include "owsim/owsim.h"
-
 #include <cmath>
 #include <cstddef>
 #include <exception>
@@ -13,6 +11,7 @@
 #include <vector>
 
 #include "geometry/error.hpp"
+#include "owsim/owsim.h"
 #include "owsim/simulation.hpp"
 #include "owsim/version.hpp"
 
@@ -74,7 +73,8 @@ owsim_status guarded(const char* function, Call&& call) noexcept {
   } catch (const ArgumentError& error) {
     return fail(OWSIM_ERROR_ARGUMENT, std::string(function) + ": " + error.message);
   } catch (const Cancelled&) {
-    return fail(OWSIM_ERROR_CANCELLED, std::string(function) + ": stopped by the progress callback");
+    return fail(OWSIM_ERROR_CANCELLED,
+                std::string(function) + ": stopped by the progress callback");
   } catch (const owsim::FileError& error) {
     return fail(OWSIM_ERROR_FILE, error.what());
   } catch (const owsim::Error& error) {
@@ -240,7 +240,8 @@ owsim_status owsim_simulate_frame(owsim_simulation* simulation, int64_t frame, o
     const int64_t count = simulation->simulation.frame_count();
     if (frame < 0 || frame >= count) {
       throw ArgumentError{"frame " + std::to_string(frame) +
-                          " is out of range: the flight has frames 0.." + std::to_string(count - 1)};
+                          " is out of range: the flight has frames 0.." +
+                          std::to_string(count - 1)};
     }
     simulation->simulation.simulate_frame(frame, into);
   });
@@ -354,9 +355,8 @@ owsim_status owsim_simulation_run(const owsim_simulation* simulation,
     }
     const owsim::RunReport done = simulation->simulation.run(run);
     if (report != nullptr) {
-      *report = owsim_run_report{done.frames,       done.first_frame,    done.pulses,
-                                 done.wall_s,       done.pulses_per_s,   done.realtime_factor,
-                                 done.threads};
+      *report = owsim_run_report{done.frames,       done.first_frame,     done.pulses, done.wall_s,
+                                 done.pulses_per_s, done.realtime_factor, done.threads};
     }
   });
 }

@@ -35,8 +35,8 @@ void add_run_command(CLI::App& app, CommandResult& /*result*/) {
   command->add_option("--duration", options->simulation.duration_s, "seconds of flight to simulate")
       ->check(positive_number())
       ->excludes(frames);
-  command->add_option("--threads", options->simulation.threads,
-                      "worker threads (default: every core)")
+  command
+      ->add_option("--threads", options->simulation.threads, "worker threads (default: every core)")
       ->check(positive_number());
   command->add_option("--seed", options->simulation.seed, "override the scenario's seed");
   command->add_option("--outputs", options->outputs,
@@ -56,10 +56,9 @@ void add_run_command(CLI::App& app, CommandResult& /*result*/) {
           progress.emplace(true, static_cast<std::uint64_t>(at.frames_total),
                            static_cast<std::uint64_t>(at.first_frame));
         }
-        progress->frame_done(
-            static_cast<std::uint64_t>(at.frames_done),
-            static_cast<std::uint64_t>(at.frames_done - at.first_frame) *
-                static_cast<std::uint64_t>(simulation.pulses_per_frame()));
+        progress->frame_done(static_cast<std::uint64_t>(at.frames_done),
+                             static_cast<std::uint64_t>(at.frames_done - at.first_frame) *
+                                 static_cast<std::uint64_t>(simulation.pulses_per_frame()));
       };
     }
     run.notice = [options](std::string_view note) {

@@ -123,8 +123,8 @@ double brute_force_seconds(const BruteForceTracer& tracer,
 // final commit (flush, fsync, rename) that follows it.
 double end_to_end_seconds(const FrameSimulator& simulator, const FlightSetup& setup, int threads) {
   const ScratchFolder folder;
-  FlightOutputs outputs(flight_output_options(setup, folder.path(), {OutputKind::d64}),
-                        setup.scene, setup.scenario.scan, setup.local_frame);
+  FlightOutputs outputs(flight_output_options(setup, folder.path(), {OutputKind::d64}), setup.scene,
+                        setup.scenario.scan, setup.local_frame);
   const double seconds = seconds_of([&] {
     simulate_frames(simulator, setup, FlightRange{0, setup.frames}, threads, outputs);
   });

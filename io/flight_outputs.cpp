@@ -151,7 +151,8 @@ FlightOutputs::FlightOutputs(const FlightOutputOptions& options, const Scene& sc
   std::error_code error;
   std::filesystem::create_directories(options_.directory, error);
   if (error) {
-    throw file_error(options_.directory.string(), "cannot create the output folder: " + error.message());
+    throw file_error(options_.directory.string(),
+                     "cannot create the output folder: " + error.message());
   }
   // A checkpoint of another run must not outlive the temporaries this run is about to truncate.
   if (checkpointing() && resume_from == nullptr &&
@@ -279,7 +280,8 @@ void FlightOutputs::encode_pulses(const FrameView& frame, int begin, int end,
   const int pulses = scan_.pulses_per_frame();
   const int fibers = scan_.fibers_per_line;
   if (begin < 0 || begin >= end || end > pulses || begin % fibers != 0 ||
-      (end % fibers != 0 && end != pulses) || frame.pulses.size() != static_cast<std::size_t>(pulses) ||
+      (end % fibers != 0 && end != pulses) ||
+      frame.pulses.size() != static_cast<std::size_t>(pulses) ||
       frame.returns.size() != frame.pulses.size() ||
       out.line_blocks.size() != static_cast<std::size_t>(scan_.lines_per_frame)) {
     throw Error("outputs: pulses " + std::to_string(begin) + ".." + std::to_string(end) +

@@ -160,7 +160,8 @@ Quicklook::Quicklook(std::filesystem::path directory, const Scene& scene, const 
   std::error_code error;
   std::filesystem::create_directories(directory_, error);
   if (error) {
-    throw file_error(directory_.string(), "cannot create the quick-look directory: " + error.message());
+    throw file_error(directory_.string(),
+                     "cannot create the quick-look directory: " + error.message());
   }
   mask_.assign(static_cast<std::size_t>(base_.width()) * static_cast<std::size_t>(base_.height()),
                0);

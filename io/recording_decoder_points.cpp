@@ -66,7 +66,8 @@ DecodeReport decode_recording_points(RecordingDecoder& decoder, const RecordingS
   std::error_code error;
   std::filesystem::create_directories(options.directory, error);
   if (error) {
-    throw file_error(options.directory.string(), "cannot create the output folder: " + error.message());
+    throw file_error(options.directory.string(),
+                     "cannot create the output folder: " + error.message());
   }
   std::vector<std::unique_ptr<PointSink>> sinks;
   sinks.push_back(

@@ -156,7 +156,8 @@ MergeReport merge_recording(RecordingDecoder& decoder, const RecordingScene& sce
     std::error_code error;
     std::filesystem::create_directories(options.out.parent_path(), error);
     if (error) {
-      throw file_error(options.out.parent_path().string(), "cannot create the output folder: " + error.message());
+      throw file_error(options.out.parent_path().string(),
+                       "cannot create the output folder: " + error.message());
     }
   }
   std::optional<MilowsWordWriter> milows_out;

@@ -25,7 +25,8 @@ std::string indexed(std::string_view list, std::size_t index) {
 }
 
 void require_finite(double value, const std::string& key) {
-  if (!std::isfinite(value)) throw input_error(key, "must be a finite number, got " + number_text(value));
+  if (!std::isfinite(value))
+    throw input_error(key, "must be a finite number, got " + number_text(value));
 }
 
 void require_positive(double value, const std::string& key) {
@@ -45,7 +46,8 @@ void check_name(const std::string& name) {
       name.find_first_of("/\\") != std::string::npos) {
     throw input_error("name",
                       "must be a non-empty name without '/' or '\\' (it names the output folder), "
-                      "got '" + name + "'");
+                      "got '" +
+                          name + "'");
   }
 }
 
@@ -60,7 +62,8 @@ class IdCheck {
     }
     const auto [found, inserted] = first_.emplace(id, key);
     if (!inserted) {
-      throw input_error(key + ".id", "duplicate id '" + id + "' (first used at " + found->second + ")");
+      throw input_error(key + ".id",
+                        "duplicate id '" + id + "' (first used at " + found->second + ")");
     }
   }
 
@@ -88,23 +91,26 @@ void check_trajectory(const TrajectorySpec& trajectory) {
     for (std::size_t i = 0; i < points.size(); ++i) {
       const std::string key = indexed("trajectory.waypoints.points", i);
       if (!points[i].allFinite()) throw input_error(key, "must be three finite numbers");
-      if (i > 0 && points[i] == points[i - 1]) throw input_error(key, "repeats the previous waypoint");
+      if (i > 0 && points[i] == points[i - 1])
+        throw input_error(key, "repeats the previous waypoint");
     }
     if (!(trajectory.max_bank_deg > 0.0 && trajectory.max_bank_deg < 90.0)) {
       throw input_error("trajectory.waypoints.max_bank_deg",
                         "must be in (0, 90) degrees, got " + number_text(trajectory.max_bank_deg));
     }
   } else {
-    if (trajectory.file.empty()) throw input_error("trajectory.file", "expected a file name, got ''");
-    if (trajectory.format != "hellsim" && trajectory.format != "csv" && trajectory.format != "sbet") {
+    if (trajectory.file.empty())
+      throw input_error("trajectory.file", "expected a file name, got ''");
+    if (trajectory.format != "hellsim" && trajectory.format != "csv" &&
+        trajectory.format != "sbet") {
       throw input_error("trajectory.format",
                         "expected one of hellsim, csv, sbet, got '" + trajectory.format + "'");
     }
     require_positive(trajectory.tick_s, "trajectory.tick_s");
     if (!(std::abs(trajectory.magnetic_variation_deg) <= 180.0)) {
-      throw input_error("trajectory.magnetic_variation_deg",
-                        "must be in [-180, 180] degrees, got " +
-                            number_text(trajectory.magnetic_variation_deg));
+      throw input_error(
+          "trajectory.magnetic_variation_deg",
+          "must be in [-180, 180] degrees, got " + number_text(trajectory.magnetic_variation_deg));
     }
     validate_smoothing({trajectory.smoothing_window, trajectory.smoothing_degree},
                        "trajectory.smoothing");
@@ -115,8 +121,7 @@ void check_trajectory(const TrajectorySpec& trajectory) {
   if (trajectory.duration_s) require_positive(*trajectory.duration_s, "trajectory.duration_s");
 }
 
-void check_cylinders(const std::vector<Cylinder>& cylinders, std::string_view list,
-                     IdCheck& ids) {
+void check_cylinders(const std::vector<Cylinder>& cylinders, std::string_view list, IdCheck& ids) {
   for (std::size_t i = 0; i < cylinders.size(); ++i) {
     const Cylinder& cylinder = cylinders[i];
     const std::string key = indexed(list, i);
@@ -131,7 +136,8 @@ void check_cylinders(const std::vector<Cylinder>& cylinders, std::string_view li
 void check_scene(const Scenario& scenario) {
   const SceneSpec& scene = scenario.scene;
   require_fraction(scene.terrain.reflectivity, "scene.terrain.reflectivity");
-  if (scene.terrain.kind == TerrainKind::flat) require_finite(scene.terrain.flat_u_m, "scene.terrain.flat_u");
+  if (scene.terrain.kind == TerrainKind::flat)
+    require_finite(scene.terrain.flat_u_m, "scene.terrain.flat_u");
   if (scene.terrain.kind == TerrainKind::grid) scene.terrain.grid.validate("scene.terrain.grid");
   IdCheck ids;
   for (std::size_t i = 0; i < scene.spans.size(); ++i) {
@@ -141,7 +147,8 @@ void check_scene(const Scenario& scenario) {
   }
   check_cylinders(scene.poles, "scene.poles", ids);
   check_cylinders(scene.trees, "scene.trees", ids);
-  if (scene.forest) (void)generate_forest(*scene.forest, scenario.seed, scene.terrain, "scene.forest");
+  if (scene.forest)
+    (void)generate_forest(*scene.forest, scenario.seed, scene.terrain, "scene.forest");
 }
 
 }  // namespace

@@ -66,8 +66,7 @@ void WordFileWriter<Word>::write(std::span<const Word> words) {
   // As many words as the buffer has room for at a time: one copy on a little-endian host.
   while (!words.empty()) {
     if (buffered_bytes_ == buffer_.size()) flush_buffer();
-    const std::size_t n =
-        std::min(words.size(), (buffer_.size() - buffered_bytes_) / sizeof(Word));
+    const std::size_t n = std::min(words.size(), (buffer_.size() - buffered_bytes_) / sizeof(Word));
     unsigned char* const out = buffer_.data() + buffered_bytes_;
     if constexpr (std::endian::native == std::endian::little) {
       std::memcpy(out, words.data(), n * sizeof(Word));

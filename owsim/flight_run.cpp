@@ -35,12 +35,10 @@ std::string output_list(const std::set<OutputKind>& outputs) {
 // changes none.
 nlohmann::json run_fingerprint(const FlightSetup& setup, const SimulationOptions& simulation,
                                const std::string& source_hash, const RunOptions& options) {
-  nlohmann::json run = {{"owsim_version", version_string},
-                        {"scenario_file", source_hash},
-                        {"seed", setup.scenario.seed},
-                        {"no_noise", simulation.no_noise},
-                        {"frames", setup.frames},
-                        {"outputs", output_list(options.outputs)}};
+  nlohmann::json run = {
+      {"owsim_version", version_string}, {"scenario_file", source_hash},
+      {"seed", setup.scenario.seed},     {"no_noise", simulation.no_noise},
+      {"frames", setup.frames},          {"outputs", output_list(options.outputs)}};
   if (setup.scenario.trajectory.source == TrajectorySpec::Source::file) {
     ContentHash trajectory_file;
     trajectory_file.add_file(setup.scenario.trajectory.file);
@@ -124,8 +122,7 @@ void simulate_frames(const FrameSimulator& simulator, const FlightSetup& setup,
                               encodings[static_cast<std::size_t>(frame.buffer)]);
       },
       [&](const FrameResult& frame) {
-        outputs.finish_encoding(frame.view(),
-                                setup.trajectory.pose_at(frame.pulses.front().time_s),
+        outputs.finish_encoding(frame.view(), setup.trajectory.pose_at(frame.pulses.front().time_s),
                                 encodings[static_cast<std::size_t>(frame.buffer)]);
       },
       [&](const FrameResult& frame) {
@@ -156,13 +153,13 @@ RunReport run_flight_outputs(const FlightSetup& setup, const SimulationOptions& 
 
   const auto pulses_per_frame = static_cast<std::uint64_t>(scenario.scan.pulses_per_frame());
   const auto start = Clock::now();
-  simulate_frames(setup.simulator, setup, FlightRange{first, frames - first}, threads, outputs,
-                  [&](std::int64_t done) {
-                    if (!options.progress) return;
-                    options.progress(RunProgress{
-                        first + done, frames, first,
-                        std::chrono::duration<double>(Clock::now() - start).count()});
-                  });
+  simulate_frames(
+      setup.simulator, setup, FlightRange{first, frames - first}, threads, outputs,
+      [&](std::int64_t done) {
+        if (!options.progress) return;
+        options.progress(RunProgress{first + done, frames, first,
+                                     std::chrono::duration<double>(Clock::now() - start).count()});
+      });
   const double wall_s = std::chrono::duration<double>(Clock::now() - start).count();
 
   RunReport report;

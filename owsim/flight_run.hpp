@@ -66,7 +66,8 @@ void simulate_frames(const FrameSimulator& simulator, const FlightSetup& setup,
 // options.resume, continues from the folder's checkpoint (throws owsim::Error naming it if it was
 // written by a run with other output-changing options or inputs), or starts from frame 0 with a
 // notice if there is none.
-[[nodiscard]] RunReport run_flight_outputs(const FlightSetup& setup, const SimulationOptions& simulation,
+[[nodiscard]] RunReport run_flight_outputs(const FlightSetup& setup,
+                                           const SimulationOptions& simulation,
                                            const std::string& source_hash,
                                            const RunOptions& options, int threads);
 

@@ -32,10 +32,10 @@ struct ReturnRecord {
   std::uint16_t counter = 0;       // the range counter the word holds
   std::uint8_t surface = 0;        // points.csv `class`: SurfaceClass (0 wire … 3 ground)
   std::uint8_t number_of_returns = 1;
-  std::uint32_t object = 0;  // points.csv `object`: index into Simulation::object_ids()
-  double e_m = 0, n_m = 0, u_m = 0;           // local East-North-Up from the scenario origin
-  double lat_deg = 0, lon_deg = 0, h_m = 0;   // WGS-84
-  double energy_rel = 0;                      // ξ_rx/ξ_tx
+  std::uint32_t object = 0;          // points.csv `object`: index into Simulation::object_ids()
+  double e_m = 0, n_m = 0, u_m = 0;  // local East-North-Up from the scenario origin
+  double lat_deg = 0, lon_deg = 0, h_m = 0;  // WGS-84
+  double energy_rel = 0;                     // ξ_rx/ξ_tx
   double incidence_deg = 0;
 };
 static_assert(sizeof(ReturnRecord) == 112);

@@ -34,7 +34,8 @@ std::string hash_of_file(const std::filesystem::path& path) {
 
 // A scenario built in code, checked and completed as the loader completes what it reads.
 Scenario checked(Scenario scenario) {
-  if (scenario.name.empty() && !scenario.path.empty()) scenario.name = scenario.path.stem().string();
+  if (scenario.name.empty() && !scenario.path.empty())
+    scenario.name = scenario.path.stem().string();
   scenario.scan.counter = scenario.receiver.counter;
   scenario.scan.start_s = scenario.trajectory.start_s;
   try {
@@ -180,7 +181,8 @@ Frame Simulation::simulate_frame(std::int64_t frame) const {
 
 void Simulation::simulate_frame(std::int64_t frame, Frame& out) const {
   if (frame < 0 || frame >= frame_count()) {
-    throw input_error("frame", std::to_string(frame) + " is out of range: the flight has frames 0.." +
+    throw input_error("frame", std::to_string(frame) +
+                                   " is out of range: the flight has frames 0.." +
                                    std::to_string(frame_count() - 1));
   }
   state_->simulate(frame, state_->setup.trajectory, out);

@@ -52,48 +52,48 @@ py::dtype record_dtype(const std::vector<Field>& fields, std::size_t itemsize) {
 py::dtype returns_dtype() {
   using R = ReturnRecord;
   // Made once and never freed: a static py::dtype would be released after the interpreter.
-  static const py::dtype& dtype = *new py::dtype(record_dtype(
-      {{"frame", "<i8", offsetof(R, frame)},
-       {"pulse", "<i4", offsetof(R, pulse)},
-       {"line", "<i4", offsetof(R, line)},
-       {"fiber", "<i4", offsetof(R, fiber)},
-       {"return", "<i4", offsetof(R, return_number)},
-       {"time_s", "<f8", offsetof(R, time_s)},
-       {"range_m", "<f8", offsetof(R, range_m)},
-       {"counter", "<u2", offsetof(R, counter)},
-       {"e_m", "<f8", offsetof(R, e_m)},
-       {"n_m", "<f8", offsetof(R, n_m)},
-       {"u_m", "<f8", offsetof(R, u_m)},
-       {"lat_deg", "<f8", offsetof(R, lat_deg)},
-       {"lon_deg", "<f8", offsetof(R, lon_deg)},
-       {"h_m", "<f8", offsetof(R, h_m)},
-       {"class", "u1", offsetof(R, surface)},
-       {"object", "<u4", offsetof(R, object)},
-       {"energy_rel", "<f8", offsetof(R, energy_rel)},
-       {"incidence_deg", "<f8", offsetof(R, incidence_deg)},
-       {"number_of_returns", "u1", offsetof(R, number_of_returns)}},
-      sizeof(R)));
+  static const py::dtype& dtype =
+      *new py::dtype(record_dtype({{"frame", "<i8", offsetof(R, frame)},
+                                   {"pulse", "<i4", offsetof(R, pulse)},
+                                   {"line", "<i4", offsetof(R, line)},
+                                   {"fiber", "<i4", offsetof(R, fiber)},
+                                   {"return", "<i4", offsetof(R, return_number)},
+                                   {"time_s", "<f8", offsetof(R, time_s)},
+                                   {"range_m", "<f8", offsetof(R, range_m)},
+                                   {"counter", "<u2", offsetof(R, counter)},
+                                   {"e_m", "<f8", offsetof(R, e_m)},
+                                   {"n_m", "<f8", offsetof(R, n_m)},
+                                   {"u_m", "<f8", offsetof(R, u_m)},
+                                   {"lat_deg", "<f8", offsetof(R, lat_deg)},
+                                   {"lon_deg", "<f8", offsetof(R, lon_deg)},
+                                   {"h_m", "<f8", offsetof(R, h_m)},
+                                   {"class", "u1", offsetof(R, surface)},
+                                   {"object", "<u4", offsetof(R, object)},
+                                   {"energy_rel", "<f8", offsetof(R, energy_rel)},
+                                   {"incidence_deg", "<f8", offsetof(R, incidence_deg)},
+                                   {"number_of_returns", "u1", offsetof(R, number_of_returns)}},
+                                  sizeof(R)));
   return dtype;
 }
 
 // `owsim pattern`'s columns (and the slot within the line).
 py::dtype pulses_dtype() {
   // Made once and never freed: a static py::dtype would be released after the interpreter.
-  static const py::dtype& dtype = *new py::dtype(record_dtype(
-      {{"pulse", "<i4", offsetof(Pulse, index)},
-       {"line", "<i4", offsetof(Pulse, line)},
-       {"slot", "<i4", offsetof(Pulse, slot)},
-       {"fiber", "<i4", offsetof(Pulse, fiber)},
-       {"reference", "?", offsetof(Pulse, reference)},
-       {"time_s", "<f8", offsetof(Pulse, time_s)},
-       {"alpha_deg", "<f8", offsetof(Pulse, alpha_deg)},
-       {"mirror_beta_deg", "<f8", offsetof(Pulse, mirror_beta_deg)},
-       {"beta_deg", "<f8", offsetof(Pulse, beta_deg)},
-       {"encoder", "<u4", offsetof(Pulse, encoder)},
-       {"fg", "?", offsetof(Pulse, frame_gate)},
-       {"lg", "?", offsetof(Pulse, line_gate)},
-       {"movdir", "<i4", offsetof(Pulse, mov_dir)}},
-      sizeof(Pulse)));
+  static const py::dtype& dtype =
+      *new py::dtype(record_dtype({{"pulse", "<i4", offsetof(Pulse, index)},
+                                   {"line", "<i4", offsetof(Pulse, line)},
+                                   {"slot", "<i4", offsetof(Pulse, slot)},
+                                   {"fiber", "<i4", offsetof(Pulse, fiber)},
+                                   {"reference", "?", offsetof(Pulse, reference)},
+                                   {"time_s", "<f8", offsetof(Pulse, time_s)},
+                                   {"alpha_deg", "<f8", offsetof(Pulse, alpha_deg)},
+                                   {"mirror_beta_deg", "<f8", offsetof(Pulse, mirror_beta_deg)},
+                                   {"beta_deg", "<f8", offsetof(Pulse, beta_deg)},
+                                   {"encoder", "<u4", offsetof(Pulse, encoder)},
+                                   {"fg", "?", offsetof(Pulse, frame_gate)},
+                                   {"lg", "?", offsetof(Pulse, line_gate)},
+                                   {"movdir", "<i4", offsetof(Pulse, mov_dir)}},
+                                  sizeof(Pulse)));
   return dtype;
 }
 
@@ -119,7 +119,8 @@ std::vector<PoseSample> pose_samples(const py::array& poses) {
                                  "roll_deg", "pitch_deg", "heading_deg"};
   std::vector<PoseSample> samples;
   if (poses.dtype().attr("names").is_none()) {
-    const auto table = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(poses);
+    const auto table =
+        py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(poses);
     if (!table || table.ndim() != 2 || table.shape(1) != 7) {
       throw py::value_error(
           "poses: expected an (N, 7) array of time_s, e_m, n_m, u_m, roll_deg, pitch_deg, "
@@ -139,8 +140,8 @@ std::vector<PoseSample> pose_samples(const py::array& poses) {
     try {
       column = poses[py::str(kNames[c])];
     } catch (const py::error_already_set&) {
-      throw py::value_error(std::string("poses: the structured array has no field '") +
-                            kNames[c] + "'");
+      throw py::value_error(std::string("poses: the structured array has no field '") + kNames[c] +
+                            "'");
     }
     const auto values = py::array_t<double, py::array::forcecast>::ensure(column);
     const auto cells = values.unchecked<1>();
@@ -219,7 +220,8 @@ FramePool& frame_pool() {
 
 std::shared_ptr<Frame> simulate(const Simulation& simulation, std::int64_t k) {
   if (k < 0 || k >= simulation.frame_count()) {
-    throw py::index_error("frame " + std::to_string(k) + " is out of range: the flight has frames 0.." +
+    throw py::index_error("frame " + std::to_string(k) +
+                          " is out of range: the flight has frames 0.." +
                           std::to_string(simulation.frame_count() - 1));
   }
   std::shared_ptr<Frame> frame = frame_pool().take();
@@ -323,10 +325,9 @@ PYBIND11_MODULE(owsim, m) {
             py::gil_scoped_release unlocked;
             return std::make_shared<Simulation>(Simulation::from_yaml(yaml, name, options));
           },
-          py::arg("yaml"), py::arg("name") = "scenario.yaml", py::kw_only(),
-          py::arg("threads") = 0, py::arg("frames") = py::none(),
-          py::arg("duration_s") = py::none(), py::arg("seed") = py::none(),
-          py::arg("no_noise") = false)
+          py::arg("yaml"), py::arg("name") = "scenario.yaml", py::kw_only(), py::arg("threads") = 0,
+          py::arg("frames") = py::none(), py::arg("duration_s") = py::none(),
+          py::arg("seed") = py::none(), py::arg("no_noise") = false)
       .def_property_readonly("frame_count", &Simulation::frame_count)
       .def_property_readonly("pulses_per_frame", &Simulation::pulses_per_frame)
       .def_property_readonly("model",
@@ -351,7 +352,9 @@ PYBIND11_MODULE(owsim, m) {
           "Frame k along the scenario's trajectory, or (co-simulation) flown through `poses`")
       .def("__len__", [](const Simulation& s) { return s.frame_count(); })
       .def("__iter__",
-           [](std::shared_ptr<const Simulation> s) { return FrameIterator{std::move(s), 0}; })
+           [](std::shared_ptr<const Simulation> s) {
+             return FrameIterator{std::move(s), 0};
+           })
       .def(
           "run",
           [](const Simulation& s, std::optional<std::filesystem::path> out,

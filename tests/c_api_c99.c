@@ -22,8 +22,8 @@ int main(int argc, char** argv) {
   }
   (void)owsim_frame_words(frame, &bytes);
   (void)owsim_frame_returns(frame, &returns);
-  printf("owsim %s: frame 0: %lu word bytes, %lu returns\n", owsim_version(),
-         (unsigned long)bytes, (unsigned long)returns);
+  printf("owsim %s: frame 0: %lu word bytes, %lu returns\n", owsim_version(), (unsigned long)bytes,
+         (unsigned long)returns);
   owsim_frame_release(frame);
   owsim_simulation_release(simulation);
   return bytes > 0 && returns > 0 ? 0 : 1;

@@ -42,7 +42,7 @@ inline std::map<std::string, std::filesystem::path> reference_scenarios(
 // `owsim run SCENARIO --frames 3 --outputs d64,points` cut into frames.
 struct ReferenceRun {
   std::size_t word_size = 8;
-  std::vector<std::string> frame_words;             // each frame's word bytes
+  std::vector<std::string> frame_words;              // each frame's word bytes
   std::vector<std::vector<std::string>> frame_rows;  // each frame's points.csv rows
 };
 

@@ -109,9 +109,9 @@ TEST(CApi, NullHandlesAndBadArgumentsGiveStatusCodes) {
   owsim_simulation* simulation = nullptr;
   owsim_simulation_options options = owsim_simulation_options_default();
   options.frames = 2;
-  ASSERT_EQ(owsim_simulation_open_with((kExamples / "single_span.yaml").c_str(), &options,
-                                       &simulation),
-            OWSIM_OK);
+  ASSERT_EQ(
+      owsim_simulation_open_with((kExamples / "single_span.yaml").c_str(), &options, &simulation),
+      OWSIM_OK);
   EXPECT_EQ(owsim_simulate_frame(simulation, 2, &frame), OWSIM_ERROR_ARGUMENT);
   EXPECT_STREQ(owsim_last_error(),
                "owsim_simulate_frame: frame 2 is out of range: the flight has frames 0..1");
@@ -191,9 +191,9 @@ TEST(CApi, RunWritesTheFilesAndTheCallbackCanStopIt) {
   owsim_simulation_options options = owsim_simulation_options_default();
   options.frames = 3;
   owsim_simulation* simulation = nullptr;
-  ASSERT_EQ(owsim_simulation_open_with((kExamples / "single_span.yaml").c_str(), &options,
-                                       &simulation),
-            OWSIM_OK);
+  ASSERT_EQ(
+      owsim_simulation_open_with((kExamples / "single_span.yaml").c_str(), &options, &simulation),
+      OWSIM_OK);
   owsim_run_options run = owsim_run_options_default();
   const std::string done_dir = (folder / "done").string();
   run.out_dir = done_dir.c_str();

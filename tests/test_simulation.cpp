@@ -136,7 +136,8 @@ TEST(Simulation, ScenarioBuiltInCodeEqualsTheSameScenarioFromYaml) {
 
 TEST(Simulation, FromYamlTextEqualsTheFile) {
   const std::string text = test::read_whole_file(kExamples / "single_span.yaml");
-  const Simulation from_text = Simulation::from_yaml(text, kExamples / "single_span.yaml", frames(1));
+  const Simulation from_text =
+      Simulation::from_yaml(text, kExamples / "single_span.yaml", frames(1));
   const Simulation from_file = Simulation::open(kExamples / "single_span.yaml", frames(1));
   EXPECT_TRUE(bytes_of(from_text.simulate_frame(0).word_bytes()) ==
               bytes_of(from_file.simulate_frame(0).word_bytes()));
@@ -167,8 +168,7 @@ TEST(Simulation, ScenarioBuiltInCodeIsCheckedWithTheLoadersMessages) {
        [](Scenario& s) { s.trajectory.waypoints_enu_m.pop_back(); }},
       {"reflectivity: 0.3}", "reflectivity: 1.5}",
        [](Scenario& s) { s.scene.spans[0].pole_reflectivity = 1.5; }},
-      {"threshold: 0.005", "threshold: 2",
-       [](Scenario& s) { s.receiver.threshold = 2; }},
+      {"threshold: 0.005", "threshold: 2", [](Scenario& s) { s.receiver.threshold = 2; }},
       {"    - id: line-a", "    - id: line/a", [](Scenario& s) { s.scene.spans[0].id = "line/a"; }},
   };
   const std::string text = test::read_whole_file(kExamples / "single_span.yaml");
@@ -229,19 +229,21 @@ TEST(Simulation, CoSimulationRefusesPosesThatDoNotCoverTheFrame) {
   const double start = simulation.frame_start_s(4);
   const double end = simulation.frame_end_s(4);
   const auto short_poses = sampled_poses(simulation, start, end - 0.1);
-  EXPECT_TRUE(error_of([&] { (void)simulation.simulate_frame(4, short_poses); })
-                  .starts_with("poses: cover "));
+  EXPECT_TRUE(error_of([&] {
+                (void)simulation.simulate_frame(4, short_poses);
+              }).starts_with("poses: cover "));
   const std::vector<PoseSample> one = {sampled_poses(simulation, start, start)};
-  EXPECT_TRUE(error_of([&] { (void)simulation.simulate_frame(4, one); })
-                  .starts_with("poses: need at least 2 samples"));
+  EXPECT_TRUE(error_of([&] {
+                (void)simulation.simulate_frame(4, one);
+              }).starts_with("poses: need at least 2 samples"));
   auto backwards = sampled_poses(simulation, start - 0.1, end + 0.1);
   backwards[7].time_s = backwards[5].time_s;
-  EXPECT_TRUE(error_of([&] { (void)simulation.simulate_frame(4, backwards); })
-                  .starts_with("poses[7]: "));
+  EXPECT_TRUE(
+      error_of([&] { (void)simulation.simulate_frame(4, backwards); }).starts_with("poses[7]: "));
   auto far = sampled_poses(simulation, start - 0.1, end + 0.1);
   far[2].e_m = 1e6;
-  EXPECT_TRUE(error_of([&] { (void)simulation.simulate_frame(4, far); })
-                  .starts_with("poses[2]: position"));
+  EXPECT_TRUE(
+      error_of([&] { (void)simulation.simulate_frame(4, far); }).starts_with("poses[2]: position"));
 }
 
 TEST(Simulation, BadInputIsOneLineError) {
@@ -256,8 +258,9 @@ TEST(Simulation, BadInputIsOneLineError) {
   } catch (const FileError& error) {
     EXPECT_EQ(std::string(error.what()), "/nonexistent/scenario.yaml: cannot read the file");
   }
-  EXPECT_EQ(error_of([] { (void)Simulation::from_yaml("name: [", "bad.yaml"); }).rfind("bad.yaml:", 0),
-            0U);
+  EXPECT_EQ(
+      error_of([] { (void)Simulation::from_yaml("name: [", "bad.yaml"); }).rfind("bad.yaml:", 0),
+      0U);
   SimulationOptions both = frames(2);
   both.duration_s = 1.0;
   EXPECT_EQ(error_of([&] { (void)Simulation::open(kExamples / "single_span.yaml", both); }),
@@ -290,10 +293,10 @@ TEST(Simulation, ConcurrentCallsGiveTheSequentialFrames) {
 TEST(Simulation, RunWritesWhatOwsimRunWrites) {
   const TempDir folder("owsim_facade_run");
   const fs::path scenario = kExamples / "pylon_line.yaml";
-  const test::CliResult cli = test::run_cli(
-      {"run", scenario.string(), "--frames", "4", "--outputs", "d64,points,trajectory", "--quiet",
-       "--out", (folder / "cli").string()},
-      fs::current_path());
+  const test::CliResult cli =
+      test::run_cli({"run", scenario.string(), "--frames", "4", "--outputs",
+                     "d64,points,trajectory", "--quiet", "--out", (folder / "cli").string()},
+                    fs::current_path());
   ASSERT_EQ(cli.exit_status, 0) << cli.err;
 
   const Simulation simulation = Simulation::open(scenario, frames(4));
@@ -308,7 +311,8 @@ TEST(Simulation, RunWritesWhatOwsimRunWrites) {
   const RunReport report = simulation.run(run);
   EXPECT_EQ(report.frames, 4);
   EXPECT_EQ(progress, (std::vector<std::int64_t>{1, 2, 3, 4}));
-  for (const char* file : {"flight.d64", "points.csv", "points.las", "points.ply", "trajectory.csv"}) {
+  for (const char* file :
+       {"flight.d64", "points.csv", "points.las", "points.ply", "trajectory.csv"}) {
     EXPECT_TRUE(test::read_whole_file(folder / "facade" / file) ==
                 test::read_whole_file(folder / "cli" / file))
         << file;

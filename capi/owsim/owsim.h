@@ -55,11 +55,11 @@ extern "C" {
 
 typedef enum owsim_status {
   OWSIM_OK = 0,
-  OWSIM_ERROR_ARGUMENT = 1, /* a NULL pointer, a frame out of range, a bad option */
-  OWSIM_ERROR_INPUT = 2,    /* a scenario, trajectory or pose owsim cannot use */
-  OWSIM_ERROR_FILE = 3,     /* a file or folder that cannot be opened, read, created or written */
+  OWSIM_ERROR_ARGUMENT = 1,  /* a NULL pointer, a frame out of range, a bad option */
+  OWSIM_ERROR_INPUT = 2,     /* a scenario, trajectory or pose owsim cannot use */
+  OWSIM_ERROR_FILE = 3,      /* a file or folder that cannot be opened, read, created or written */
   OWSIM_ERROR_CANCELLED = 4, /* the progress callback asked owsim_simulation_run to stop */
-  OWSIM_ERROR_INTERNAL = 5  /* out of memory or a bug in owsim: the handles stay usable */
+  OWSIM_ERROR_INTERNAL = 5   /* out of memory or a bug in owsim: the handles stay usable */
 } owsim_status;
 
 typedef struct owsim_simulation owsim_simulation;
@@ -87,7 +87,7 @@ typedef struct owsim_simulation_options {
   double duration_s;    /* seconds of flight instead of frames; 0: unset */
   uint64_t seed;        /* replaces the scenario's seed when override_seed is nonzero */
   int32_t override_seed;
-  int32_t no_noise;     /* nonzero: range noise off (sigma = 0) */
+  int32_t no_noise; /* nonzero: range noise off (sigma = 0) */
 } owsim_simulation_options;
 
 OWSIM_API owsim_simulation_options owsim_simulation_options_default(void);
@@ -136,10 +136,10 @@ typedef struct owsim_return {
   uint16_t counter;      /* the range counter the word holds */
   uint8_t surface;       /* points.csv `class`: OWSIM_CLASS_* */
   uint8_t number_of_returns;
-  uint32_t object; /* points.csv `object`: owsim_simulation_object_id(simulation, object) */
-  double e_m, n_m, u_m;          /* local East-North-Up metres from the scenario origin */
-  double lat_deg, lon_deg, h_m;  /* WGS-84 */
-  double energy_rel;             /* received / transmitted energy */
+  uint32_t object;      /* points.csv `object`: owsim_simulation_object_id(simulation, object) */
+  double e_m, n_m, u_m; /* local East-North-Up metres from the scenario origin */
+  double lat_deg, lon_deg, h_m; /* WGS-84 */
+  double energy_rel;            /* received / transmitted energy */
   double incidence_deg;
 } owsim_return;
 
@@ -153,7 +153,7 @@ enum {
 
 /* One pulse of the scan pattern (`owsim pattern`'s columns). */
 typedef struct owsim_pulse {
-  int32_t index;     /* within the frame */
+  int32_t index; /* within the frame */
   int32_t line;
   int32_t fiber;     /* 1..127 */
   int32_t reference; /* nonzero for the reference fiber: no ray leaves the sensor */
@@ -211,10 +211,10 @@ typedef int (*owsim_progress_fn)(int64_t frames_done, int64_t frames_total, void
 /* What `owsim run` takes besides the simulation options. Start from
  * owsim_run_options_default(). */
 typedef struct owsim_run_options {
-  uint32_t struct_size; /* sizeof(owsim_run_options) */
-  const char* out_dir;  /* NULL: out/<scenario name>/ */
-  const char* outputs;  /* comma list as `owsim run --outputs`; NULL: all */
-  int32_t resume;       /* nonzero: continue from the folder's checkpoint */
+  uint32_t struct_size;       /* sizeof(owsim_run_options) */
+  const char* out_dir;        /* NULL: out/<scenario name>/ */
+  const char* outputs;        /* comma list as `owsim run --outputs`; NULL: all */
+  int32_t resume;             /* nonzero: continue from the folder's checkpoint */
   owsim_progress_fn progress; /* may be NULL */
   void* user_data;
 } owsim_run_options;

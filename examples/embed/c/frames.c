@@ -3,9 +3,8 @@
  *   ./frames examples/single_span.yaml out.d64
  * simulates every frame of the scenario, writes the words (the same bytes as owsim run's
  * flight.d64) and counts the returns by class. */
-#include <stdio.h>
-
 #include <owsim/owsim.h>
+#include <stdio.h>
 
 int main(int argc, char** argv) {
   static const char* const names[] = {"wire", "pole", "tree", "ground"};
@@ -39,7 +38,8 @@ int main(int argc, char** argv) {
   printf("\n");
   status = 0;
 fail:
-  if (status != 0) fprintf(stderr, "frames: %s\n", *owsim_last_error() ? owsim_last_error() : "cannot write");
+  if (status != 0)
+    fprintf(stderr, "frames: %s\n", *owsim_last_error() ? owsim_last_error() : "cannot write");
   if (out != NULL && fclose(out) != 0) status = 1;
   owsim_frame_release(frame);
   owsim_simulation_release(sim);

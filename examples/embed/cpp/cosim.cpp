@@ -3,9 +3,8 @@
 // 50 Hz) and owsim returns what the sensor saw. Reports the first wire detection.
 #include <cstdio>
 #include <exception>
-#include <vector>
-
 #include <owsim/owsim.hpp>
+#include <vector>
 
 // The host's state at time t: single_span's route, flown by the host instead of the scenario.
 owsim::PoseSample host_pose(double t) {
