@@ -5,7 +5,7 @@
 #include <benchmark/benchmark.h>
 
 #include "bench/bench_fixture.hpp"
-#include "io/trajectory_loader.hpp"
+#include "io/trajectory/trajectory_loader.hpp"
 #include "sensor/mounting.hpp"
 #include "sensor/scan_pattern.hpp"
 

@@ -1,7 +1,7 @@
-// File writing (io/word_file.hpp): MilOWS frames (20,352 words, 163 kB each) streamed through the
-// word-file writer into a crash-safe file in the system's temporary folder and committed — with
-// and without the fsync at commit — and read back through the streaming reader. Each iteration
-// writes or reads 32 frames (5.2 MB); bytes are the words' bytes.
+// File writing (io/recording/word_file.hpp): MilOWS frames (20,352 words, 163 kB each) streamed
+// through the word-file writer into a crash-safe file in the system's temporary folder and
+// committed — with and without the fsync at commit — and read back through the streaming reader.
+// Each iteration writes or reads 32 frames (5.2 MB); bytes are the words' bytes.
 #include <benchmark/benchmark.h>
 #include <stdlib.h>
 
@@ -10,7 +10,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "io/word_file.hpp"
+#include "io/recording/word_file.hpp"
 
 namespace owsim {
 namespace {

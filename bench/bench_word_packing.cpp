@@ -1,12 +1,13 @@
-// Word packing (io/frame_words.hpp): one simulated frame of the benchmark scenario packed into
-// MilOWS 64-bit words and, with the HELLAS pattern, into HELLAS 32-bit words. Items are pulses.
+// Word packing (io/recording/frame_words.hpp): one simulated frame of the benchmark scenario packed
+// into MilOWS 64-bit words and, with the HELLAS pattern, into HELLAS 32-bit words. Items are
+// pulses.
 #include <benchmark/benchmark.h>
 
 #include <cstdint>
 #include <vector>
 
 #include "bench/bench_fixture.hpp"
-#include "io/frame_words.hpp"
+#include "io/recording/frame_words.hpp"
 #include "sensor/scan_pattern.hpp"
 
 namespace owsim {

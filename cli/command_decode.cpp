@@ -1,5 +1,5 @@
 // owsim decode FILE --scenario S [--trajectory T] --out DIR — a recording back into points, what
-// a replay tool shows a person (INTERFACE.md; io/recording_decoder_points.hpp).
+// a replay tool shows a person (INTERFACE.md; io/recording/recording_decoder_points.hpp).
 #include <fmt/core.h>
 
 #include <cstdint>
@@ -7,7 +7,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/recording_command.hpp"
-#include "io/recording_decoder_points.hpp"
+#include "io/recording/recording_decoder_points.hpp"
 
 namespace owsim::cli {
 namespace {

@@ -6,7 +6,7 @@
 
 #include "cli/commands.hpp"
 #include "geometry/error.hpp"
-#include "io/recording_check.hpp"
+#include "io/recording/recording_check.hpp"
 
 namespace owsim::cli {
 namespace {

@@ -1,5 +1,5 @@
 // owsim merge RECORDING --scenario S [--trajectory T] --out FILE — put a scenario's objects into a
-// recording (INTERFACE.md; SENSOR-SPEC §9; io/recording_merge.hpp).
+// recording (INTERFACE.md; SENSOR-SPEC §9; io/recording/recording_merge.hpp).
 #include <fmt/core.h>
 
 #include <cstdint>
@@ -7,7 +7,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/recording_command.hpp"
-#include "io/recording_merge.hpp"
+#include "io/recording/recording_merge.hpp"
 
 namespace owsim::cli {
 namespace {

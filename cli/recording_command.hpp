@@ -10,9 +10,9 @@
 #include <string>
 
 #include "cli/progress_line.hpp"
-#include "io/recording_decoder.hpp"
-#include "io/recording_decoder_scene.hpp"
-#include "io/scenario.hpp"
+#include "io/recording/recording_decoder.hpp"
+#include "io/recording/recording_decoder_scene.hpp"
+#include "io/scenario/scenario.hpp"
 
 namespace owsim::cli {
 

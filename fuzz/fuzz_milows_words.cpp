@@ -1,7 +1,8 @@
-// libFuzzer target: a MilOWS recording of arbitrary bytes through io/recording_check.hpp (what
-// `owsim info` runs: the structure check, the text and JSON reports) and every whole word through
-// io/milows_word.hpp, whose unpack must be total and whose pack must give the word back bit for
-// bit. Any input must be checked or throw owsim::Error; anything else is a finding.
+// libFuzzer target: a MilOWS recording of arbitrary bytes through io/recording/recording_check.hpp
+// (what `owsim info` runs: the structure check, the text and JSON reports) and every whole word
+// through io/recording/milows_word.hpp, whose unpack must be total and whose pack must give the
+// word back bit for bit. Any input must be checked or throw owsim::Error; anything else is a
+// finding.
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -9,8 +10,8 @@
 
 #include "fuzz/fuzz_input_file.hpp"
 #include "geometry/error.hpp"
-#include "io/milows_word.hpp"
-#include "io/recording_check.hpp"
+#include "io/recording/milows_word.hpp"
+#include "io/recording/recording_check.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   for (std::size_t at = 0; at + sizeof(std::uint64_t) <= size; at += sizeof(std::uint64_t)) {

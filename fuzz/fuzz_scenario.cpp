@@ -1,4 +1,4 @@
-// libFuzzer target: io/scenario_loader.hpp load_scenario_text on arbitrary YAML text.
+// libFuzzer target: io/scenario/scenario_loader.hpp load_scenario_text on arbitrary YAML text.
 // Any input must either load or throw owsim::Error (one line naming the file); any other
 // exception, a crash or a sanitizer report is a finding. Relative paths in the scenario resolve
 // against an empty temporary folder, so a fuzzed scenario reads no file of ours.
@@ -8,7 +8,7 @@
 #include <string_view>
 
 #include "geometry/error.hpp"
-#include "io/scenario_loader.hpp"
+#include "io/scenario/scenario_loader.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static const std::filesystem::path path =

@@ -1,6 +1,6 @@
 #pragma once
 // A regular grid of terrain heights in the local ENU frame (the content of an ESRI ASCII grid,
-// io/esri_ascii_grid.hpp), read as a lattice of height samples at the cell centres.
+// io/scenario/esri_ascii_grid.hpp), read as a lattice of height samples at the cell centres.
 //
 // Sample (row, col) stands at e = x_west_m + col·cellsize_m, n = y_south_m + (nrows − 1 − row)·
 // cellsize_m: x_west_m / y_south_m are the centre of the south-west cell (an ESRI "xllcenter";

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "geometry/error.hpp"
-#include "io/run_checkpoint.hpp"
+#include "io/run/run_checkpoint.hpp"
 #include "owsim/version.hpp"
 
 namespace owsim {
@@ -30,9 +30,9 @@ std::string output_list(const std::set<OutputKind>& outputs) {
   return list;
 }
 
-// What makes a run's output bytes (io/run_checkpoint.hpp `run`): owsim's version, the scenario's
-// text and the files it reads, and the options that change bytes. Not the thread count, which
-// changes none.
+// What makes a run's output bytes (io/run/run_checkpoint.hpp `run`): owsim's version, the
+// scenario's text and the files it reads, and the options that change bytes. Not the thread count,
+// which changes none.
 nlohmann::json run_fingerprint(const FlightSetup& setup, const SimulationOptions& simulation,
                                const std::string& source_hash, const RunOptions& options) {
   nlohmann::json run = {

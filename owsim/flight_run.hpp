@@ -1,7 +1,8 @@
 #pragma once
 // A whole flight into output files (INTERFACE.md "`owsim run` outputs"): the frame pipeline of
-// engine/flight_pipeline.hpp feeding io/flight_outputs.hpp, with the run checkpoint that --resume
-// continues from. What owsim::Simulation::run does; `owsim bench` times simulate_frames alone.
+// engine/flight_pipeline.hpp feeding io/run/flight_outputs.hpp, with the run checkpoint that
+// --resume continues from. What owsim::Simulation::run does; `owsim bench` times simulate_frames
+// alone.
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -11,7 +12,7 @@
 #include <string_view>
 
 #include "engine/flight_pipeline.hpp"
-#include "io/flight_outputs.hpp"
+#include "io/run/flight_outputs.hpp"
 #include "owsim/flight_setup.hpp"
 
 namespace owsim {
@@ -27,7 +28,7 @@ struct RunProgress {
 struct RunOptions {
   std::optional<std::filesystem::path> out;  // default out/<scenario name>/
   std::set<OutputKind> outputs = all_outputs();
-  bool resume = false;  // continue from the output folder's checkpoint (io/run_checkpoint.hpp)
+  bool resume = false;  // continue from the output folder's checkpoint (io/run/run_checkpoint.hpp)
   // Called after every frame, in frame order, from one thread at a time (a worker's, not
   // necessarily the caller's). An exception it throws stops the run; the outputs are removed.
   std::function<void(const RunProgress&)> progress;

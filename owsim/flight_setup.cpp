@@ -6,8 +6,8 @@
 #include <utility>
 
 #include "geometry/error.hpp"
-#include "io/scene_builder.hpp"
-#include "io/trajectory_loader.hpp"
+#include "io/scenario/scene_builder.hpp"
+#include "io/trajectory/trajectory_loader.hpp"
 #include "sensor/range_counter.hpp"
 
 namespace owsim {

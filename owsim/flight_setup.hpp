@@ -13,7 +13,7 @@
 #include "engine/frame_tracer.hpp"
 #include "geometry/geodetic_frame.hpp"
 #include "geometry/scene.hpp"
-#include "io/scenario.hpp"
+#include "io/scenario/scenario.hpp"
 #include "sensor/trajectory.hpp"
 
 namespace owsim {

@@ -2,8 +2,8 @@
 
 #include <bit>
 
-#include "io/frame_points.hpp"
-#include "io/frame_words.hpp"
+#include "io/points/frame_points.hpp"
+#include "io/recording/frame_words.hpp"
 
 namespace owsim {
 

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "engine/frame_simulator.hpp"
-#include "io/point_record.hpp"
+#include "io/points/point_record.hpp"
 #include "sensor/frame_view.hpp"
 #include "sensor/sensor_model.hpp"
 

@@ -11,7 +11,7 @@
 // owsim/simulation.hpp says what each call does, its errors and its threading contract;
 // docs/embedding.md shows the same in C and Python.
 #include "geometry/error.hpp"
-#include "io/scenario.hpp"
+#include "io/scenario/scenario.hpp"
 #include "owsim/frame.hpp"
 #include "owsim/simulation.hpp"
 #include "owsim/version.hpp"

@@ -8,9 +8,9 @@
 #include <utility>
 
 #include "geometry/error.hpp"
-#include "io/run_checkpoint.hpp"
-#include "io/scenario_check.hpp"
-#include "io/scenario_loader.hpp"
+#include "io/run/run_checkpoint.hpp"
+#include "io/scenario/scenario_check.hpp"
+#include "io/scenario/scenario_loader.hpp"
 #include "sensor/scan_pattern.hpp"
 
 namespace owsim {

@@ -28,7 +28,7 @@
 #include <string_view>
 #include <vector>
 
-#include "io/scenario.hpp"
+#include "io/scenario/scenario.hpp"
 #include "owsim/flight_run.hpp"
 #include "owsim/flight_setup.hpp"
 #include "owsim/frame.hpp"
@@ -56,8 +56,9 @@ class Simulation {
   [[nodiscard]] static Simulation from_yaml(std::string_view yaml,
                                             const std::filesystem::path& name = "scenario.yaml",
                                             const SimulationOptions& options = {});
-  // A scenario built in code (io/scenario.hpp: plain structs with the spec's defaults), checked
-  // by validate_scenario first. Its runs keep no checkpoint (RunOptions::resume is refused).
+  // A scenario built in code (io/scenario/scenario.hpp: plain structs with the spec's defaults),
+  // checked by validate_scenario first. Its runs keep no checkpoint (RunOptions::resume is
+  // refused).
   [[nodiscard]] static Simulation from_scenario(Scenario scenario,
                                                 const SimulationOptions& options = {});
 

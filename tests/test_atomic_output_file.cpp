@@ -13,7 +13,7 @@
 #include <utility>
 
 #include "geometry/error.hpp"
-#include "io/atomic_output_file.hpp"
+#include "io/files/atomic_output_file.hpp"
 #include "test_recording_check_fixture.hpp"
 
 namespace owsim {

@@ -18,8 +18,8 @@
 
 #include "cli_runner.hpp"
 #include "geometry/geodetic_frame.hpp"
-#include "io/scenario_loader.hpp"
-#include "io/trajectory_loader.hpp"
+#include "io/scenario/scenario_loader.hpp"
+#include "io/trajectory/trajectory_loader.hpp"
 #include "sensor/hellas_scan.hpp"
 #include "sensor/motor_encoder.hpp"
 #include "sensor/mounting.hpp"

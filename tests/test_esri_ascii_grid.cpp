@@ -9,7 +9,7 @@
 #include <string>
 
 #include "geometry/error.hpp"
-#include "io/esri_ascii_grid.hpp"
+#include "io/scenario/esri_ascii_grid.hpp"
 
 namespace owsim {
 namespace {

@@ -20,10 +20,10 @@
 
 #include "cli_runner.hpp"
 #include "geometry/geodetic_frame.hpp"
-#include "io/hellsim_reader.hpp"
-#include "io/scenario_loader.hpp"
-#include "io/scene_builder.hpp"
-#include "io/trajectory_loader.hpp"
+#include "io/scenario/scenario_loader.hpp"
+#include "io/scenario/scene_builder.hpp"
+#include "io/trajectory/hellsim_reader.hpp"
+#include "io/trajectory/trajectory_loader.hpp"
 #include "sensor/trajectory.hpp"
 
 namespace owsim {

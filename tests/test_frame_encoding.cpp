@@ -1,7 +1,7 @@
 // Protects the split of FlightOutputs::add_frame into a parallel encode_frame and a serial
-// add_frame (io/frame_encoding.hpp): frames encoded out of order, on several threads, into a small
-// pool of reused encodings, then added in order, give byte for byte the files of frames added one
-// at a time, and the points and words of writers fed the old way (frame_points and the writers'
+// add_frame (io/run/frame_encoding.hpp): frames encoded out of order, on several threads, into a
+// small pool of reused encodings, then added in order, give byte for byte the files of frames added
+// one at a time, and the points and words of writers fed the old way (frame_points and the writers'
 // write(), one point at a time); an encoding error surfaces when its frame is added, in frame
 // order, and an encoding of another frame is refused.
 #include <gtest/gtest.h>
@@ -23,14 +23,14 @@
 #include "geometry/error.hpp"
 #include "geometry/geodetic_frame.hpp"
 #include "geometry/scene.hpp"
-#include "io/flight_outputs.hpp"
-#include "io/frame_encoding.hpp"
-#include "io/frame_points.hpp"
-#include "io/frame_words.hpp"
-#include "io/las_writer.hpp"
-#include "io/ply_writer.hpp"
-#include "io/points_csv_writer.hpp"
-#include "io/word_file.hpp"
+#include "io/points/frame_points.hpp"
+#include "io/points/las_writer.hpp"
+#include "io/points/ply_writer.hpp"
+#include "io/points/points_csv_writer.hpp"
+#include "io/recording/frame_words.hpp"
+#include "io/recording/word_file.hpp"
+#include "io/run/flight_outputs.hpp"
+#include "io/run/frame_encoding.hpp"
 #include "sensor/scan_pattern.hpp"
 #include "synthetic_flight.hpp"
 
@@ -264,9 +264,12 @@ TEST_F(FrameEncodingTest, PulsesThatAreNotWholeLinesOrAnUnsizedEncodingAreRefuse
   FrameEncoding encoding;
   outputs.size_encoding(encoding);
   const int fibers = scan_.fibers_per_line;
-  for (const auto& [begin, end] : std::vector<std::pair<int, int>>{
-           {1, fibers}, {0, fibers + 1}, {fibers, fibers}, {-fibers, 0},
-           {0, scan_.pulses_per_frame() + fibers}}) {
+  for (const auto& [begin, end] :
+       std::vector<std::pair<int, int>>{{1, fibers},
+                                        {0, fibers + 1},
+                                        {fibers, fibers},
+                                        {-fibers, 0},
+                                        {0, scan_.pulses_per_frame() + fibers}}) {
     EXPECT_THROW(outputs.encode_pulses(frames_[0].view(), begin, end, encoding), Error)
         << begin << ".." << end;
   }

@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "geometry/geodetic_frame.hpp"
-#include "io/ardupilot_log_reader.hpp"
-#include "io/scenario_loader.hpp"
-#include "io/trajectory_loader.hpp"
+#include "io/scenario/scenario_loader.hpp"
+#include "io/trajectory/ardupilot_log_reader.hpp"
+#include "io/trajectory/trajectory_loader.hpp"
 #include "sensor/frame_rays.hpp"
 #include "sensor/scan_pattern.hpp"
 #include "sensor/trajectory.hpp"

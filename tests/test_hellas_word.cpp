@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "geometry/error.hpp"
-#include "io/hellas_word.hpp"
-#include "io/word_file.hpp"
+#include "io/recording/hellas_word.hpp"
+#include "io/recording/word_file.hpp"
 
 namespace owsim {
 namespace {

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "geometry/error.hpp"
-#include "io/hellsim_reader.hpp"
+#include "io/trajectory/hellsim_reader.hpp"
 #include "sensor/trajectory.hpp"
 
 namespace owsim {

@@ -23,9 +23,9 @@
 #include "geometry/error.hpp"
 #include "geometry/geodetic_frame.hpp"
 #include "geometry/utm.hpp"
-#include "io/las_writer.hpp"
-#include "io/little_endian.hpp"
-#include "io/utm_wkt.hpp"
+#include "io/files/little_endian.hpp"
+#include "io/points/las_writer.hpp"
+#include "io/points/utm_wkt.hpp"
 #include "owsim/version.hpp"
 #include "python_oracle.hpp"
 

@@ -14,11 +14,11 @@
 
 #include "cli_runner.hpp"
 #include "geometry/error.hpp"
-#include "io/recording_check.hpp"
-#include "io/recording_decoder.hpp"
-#include "io/recording_decoder_scene.hpp"
-#include "io/recording_merge.hpp"
-#include "io/word_file.hpp"
+#include "io/recording/recording_check.hpp"
+#include "io/recording/recording_decoder.hpp"
+#include "io/recording/recording_decoder_scene.hpp"
+#include "io/recording/recording_merge.hpp"
+#include "io/recording/word_file.hpp"
 #include "sensor/range_counter.hpp"
 
 namespace owsim {

@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "geometry/error.hpp"
-#include "io/milows_word.hpp"
-#include "io/word_file.hpp"
+#include "io/recording/milows_word.hpp"
+#include "io/recording/word_file.hpp"
 
 namespace owsim {
 namespace {

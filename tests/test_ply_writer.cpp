@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "io/ply_writer.hpp"
+#include "io/points/ply_writer.hpp"
 #include "python_oracle.hpp"
 
 namespace owsim {

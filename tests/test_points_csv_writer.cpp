@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "geometry/error.hpp"
-#include "io/points_csv_writer.hpp"
+#include "io/points/points_csv_writer.hpp"
 
 namespace owsim {
 namespace {

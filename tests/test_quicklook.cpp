@@ -18,8 +18,8 @@
 #include <vector>
 
 #include "geometry/error.hpp"
-#include "io/png_image.hpp"
-#include "io/quicklook.hpp"
+#include "io/images/png_image.hpp"
+#include "io/images/quicklook.hpp"
 #include "sensor/fiber_layout.hpp"
 #include "sensor/range_counter.hpp"
 #include "sensor/scan_pattern.hpp"

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "geometry/geodetic_frame.hpp"
-#include "io/ardupilot_log_reader.hpp"
+#include "io/trajectory/ardupilot_log_reader.hpp"
 #include "sensor/trajectory.hpp"
 
 namespace owsim {

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "geometry/error.hpp"
-#include "io/recording_check.hpp"
+#include "io/recording/recording_check.hpp"
 #include "test_recording_check_fixture.hpp"
 
 namespace owsim {

@@ -1,8 +1,8 @@
 // Protects the decoder's numbering, timing and angles: words written from the scan pattern
-// (sensor/scan_pattern.hpp, io/frame_words.hpp) read back to the pattern's frame, pulse, fiber,
-// time and α exactly and β within the encoder's / NI mark's quantisation — whole recordings, cut
-// ones (mid-frame, mid-line), ones whose time tags wrap, ones off the scenario's pulse grid — and
-// unsound recordings are refused.
+// (sensor/scan_pattern.hpp, io/recording/frame_words.hpp) read back to the pattern's frame, pulse,
+// fiber, time and α exactly and β within the encoder's / NI mark's quantisation — whole recordings,
+// cut ones (mid-frame, mid-line), ones whose time tags wrap, ones off the scenario's pulse grid —
+// and unsound recordings are refused.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -14,11 +14,11 @@
 #include <vector>
 
 #include "geometry/error.hpp"
-#include "io/frame_words.hpp"
-#include "io/hellas_word.hpp"
-#include "io/milows_word.hpp"
-#include "io/recording_decoder.hpp"
-#include "io/word_file.hpp"
+#include "io/recording/frame_words.hpp"
+#include "io/recording/hellas_word.hpp"
+#include "io/recording/milows_word.hpp"
+#include "io/recording/recording_decoder.hpp"
+#include "io/recording/word_file.hpp"
 #include "sensor/hellas_scan.hpp"
 #include "sensor/motor_encoder.hpp"
 #include "sensor/scan_pattern.hpp"

@@ -1,10 +1,10 @@
-// Protects the checkpoint of `owsim run` (io/run_checkpoint.hpp) and FlightOutputs' resume: every
-// accumulated value survives the checkpoint file exactly (doubles, optionals, the LAS statistics,
-// the quick-look map mask); a damaged file or another run's checkpoint is a one-line error naming
-// it; and outputs killed mid-flight (a child process that exits without running a destructor)
-// then resumed from the checkpoint — also when the kill came while finish() was committing — end
-// byte for byte as uninterrupted outputs written without checkpoints: words (MilOWS and HELLAS),
-// points, trajectory, quick-look images and map, summary.
+// Protects the checkpoint of `owsim run` (io/run/run_checkpoint.hpp) and FlightOutputs' resume:
+// every accumulated value survives the checkpoint file exactly (doubles, optionals, the LAS
+// statistics, the quick-look map mask); a damaged file or another run's checkpoint is a one-line
+// error naming it; and outputs killed mid-flight (a child process that exits without running a
+// destructor) then resumed from the checkpoint — also when the kill came while finish() was
+// committing — end byte for byte as uninterrupted outputs written without checkpoints: words
+// (MilOWS and HELLAS), points, trajectory, quick-look images and map, summary.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -24,9 +24,9 @@
 #include "geometry/error.hpp"
 #include "geometry/geodetic_frame.hpp"
 #include "geometry/scene.hpp"
-#include "io/atomic_output_file.hpp"
-#include "io/flight_outputs.hpp"
-#include "io/run_checkpoint.hpp"
+#include "io/files/atomic_output_file.hpp"
+#include "io/run/flight_outputs.hpp"
+#include "io/run/run_checkpoint.hpp"
 #include "sensor/scan_pattern.hpp"
 #include "synthetic_flight.hpp"
 

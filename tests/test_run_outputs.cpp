@@ -20,8 +20,8 @@
 
 #include "cli_runner.hpp"
 #include "geometry/geodetic_frame.hpp"
-#include "io/hellsim_reader.hpp"
-#include "io/scenario_loader.hpp"
+#include "io/scenario/scenario_loader.hpp"
+#include "io/trajectory/hellsim_reader.hpp"
 #include "python_oracle.hpp"
 #include "sensor/trajectory.hpp"
 

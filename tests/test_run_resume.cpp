@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "cli_runner.hpp"
-#include "io/run_checkpoint.hpp"
+#include "io/run/run_checkpoint.hpp"
 
 namespace owsim {
 namespace {

@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "geometry/error.hpp"
-#include "io/little_endian.hpp"
-#include "io/sbet_reader.hpp"
+#include "io/files/little_endian.hpp"
+#include "io/trajectory/sbet_reader.hpp"
 
 namespace owsim {
 namespace {

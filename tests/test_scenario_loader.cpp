@@ -1,6 +1,6 @@
-// Protects the scenario loader (io/scenario_loader.hpp, INTERFACE.md "Scenario file"): every key
-// lands in its field, the spec's defaults hold, the three position forms agree (pyproj oracle), and
-// every bad input is one error line naming the file, the line and the dotted key path.
+// Protects the scenario loader (io/scenario/scenario_loader.hpp, INTERFACE.md "Scenario file"):
+// every key lands in its field, the spec's defaults hold, the three position forms agree (pyproj
+// oracle), and every bad input is one error line naming the file, the line and the dotted key path.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -13,8 +13,8 @@
 #include <string>
 
 #include "geometry/error.hpp"
-#include "io/scenario_loader.hpp"
-#include "io/scene_builder.hpp"
+#include "io/scenario/scenario_loader.hpp"
+#include "io/scenario/scene_builder.hpp"
 #include "python_oracle.hpp"
 #include "sensor/range_counter.hpp"
 

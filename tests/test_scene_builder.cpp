@@ -1,4 +1,5 @@
-// Protects build_scene (io/scene_builder.hpp): a scenario's spans become one object per conductor
+// Protects build_scene (io/scenario/scene_builder.hpp): a scenario's spans become one object per
+// conductor
 // ("<span>/<n>") plus support poles on the terrain, poles and trees keep their placement and
 // class, the forest follows the scenario seed, and a bad scene names the file and key.
 #include <gtest/gtest.h>
@@ -8,8 +9,8 @@
 #include <string>
 
 #include "geometry/error.hpp"
-#include "io/scenario_loader.hpp"
-#include "io/scene_builder.hpp"
+#include "io/scenario/scenario_loader.hpp"
+#include "io/scenario/scene_builder.hpp"
 
 namespace owsim {
 namespace {

@@ -14,8 +14,8 @@
 
 #include "embedding_reference.hpp"
 #include "geometry/error.hpp"
-#include "io/points_csv_writer.hpp"
-#include "io/scenario_loader.hpp"
+#include "io/files/csv_cells.hpp"
+#include "io/scenario/scenario_loader.hpp"
 #include "owsim/owsim.hpp"
 
 namespace owsim {

@@ -10,7 +10,7 @@
 #include <string>
 
 #include "geometry/error.hpp"
-#include "io/trajectory_csv_reader.hpp"
+#include "io/trajectory/trajectory_csv_reader.hpp"
 #include "sensor/trajectory.hpp"
 #include "sensor/waypoint_plan.hpp"
 

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "io/trajectory_csv_reader.hpp"
-#include "io/trajectory_csv_writer.hpp"
+#include "io/trajectory/trajectory_csv_reader.hpp"
+#include "io/trajectory/trajectory_csv_writer.hpp"
 
 namespace owsim {
 namespace {

@@ -10,7 +10,7 @@
 
 #include "geometry/error.hpp"
 #include "geometry/utm.hpp"
-#include "io/utm_wkt.hpp"
+#include "io/points/utm_wkt.hpp"
 #include "python_oracle.hpp"
 
 namespace owsim {

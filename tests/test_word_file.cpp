@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "geometry/error.hpp"
-#include "io/word_file.hpp"
+#include "io/recording/word_file.hpp"
 #include "test_recording_check_fixture.hpp"
 
 namespace owsim {

@@ -1,7 +1,7 @@
-// Protects the writers' resume after a kill (`owsim run --resume`, io/writer_checkpoint.hpp): each
-// writer's checkpoint, carried through the checkpoint file, and the temporary the killed writer
-// left (with bytes written after the checkpoint) give, once resumed and finished, the bytes of
-// an uninterrupted writer — words, points.csv, points.las (counts, bounds, creation day),
+// Protects the writers' resume after a kill (`owsim run --resume`, io/files/writer_checkpoint.hpp):
+// each writer's checkpoint, carried through the checkpoint file, and the temporary the killed
+// writer left (with bytes written after the checkpoint) give, once resumed and finished, the bytes
+// of an uninterrupted writer — words, points.csv, points.las (counts, bounds, creation day),
 // points.ply, trajectory.csv; and AtomicOutputFile::resume cuts back, appends and refuses a
 // missing or short temporary.
 #include <gtest/gtest.h>
@@ -20,13 +20,13 @@
 
 #include "geometry/error.hpp"
 #include "geometry/geodetic_frame.hpp"
-#include "io/atomic_output_file.hpp"
-#include "io/las_writer.hpp"
-#include "io/ply_writer.hpp"
-#include "io/points_csv_writer.hpp"
-#include "io/run_checkpoint.hpp"
-#include "io/trajectory_csv_writer.hpp"
-#include "io/word_file.hpp"
+#include "io/files/atomic_output_file.hpp"
+#include "io/points/las_writer.hpp"
+#include "io/points/ply_writer.hpp"
+#include "io/points/points_csv_writer.hpp"
+#include "io/recording/word_file.hpp"
+#include "io/run/run_checkpoint.hpp"
+#include "io/trajectory/trajectory_csv_writer.hpp"
 
 namespace owsim {
 namespace {

@@ -1,5 +1,5 @@
-// Protects the typed, key-tracking YAML reader (io/yaml_reader.hpp): typed values, 1-based lines,
-// dotted key paths, unknown and repeated keys (pbrt's ReportUnused), and relocated validator
+// Protects the typed, key-tracking YAML reader (io/scenario/yaml_reader.hpp): typed values, 1-based
+// lines, dotted key paths, unknown and repeated keys (pbrt's ReportUnused), and relocated validator
 // errors.
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include <functional>
 #include <string>
 
-#include "io/yaml_reader.hpp"
+#include "io/scenario/yaml_reader.hpp"
 
 namespace owsim {
 namespace {

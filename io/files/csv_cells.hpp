@@ -1,0 +1,21 @@
+#pragma once
+// The cells of owsim's CSV files (points.csv, trajectory.csv): numbers with a fixed resolution
+// and one spelling of zero, so the bytes do not depend on the host, and RFC 4180 text cells.
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+namespace owsim {
+
+// Appends `value` with exactly `decimals`
+// decimals ("-0.0000" becomes "0.0000"); a NaN or infinite value appends nothing (empty cell).
+void append_csv_fixed(std::string& out, double value, int decimals);
+// Appends `value` with `digits` significant digits in %g style; NaN or infinite: nothing.
+void append_csv_significant(std::string& out, double value, int digits);
+// Appends a decimal integer.
+void append_csv_integer(std::string& out, std::int64_t value);
+// The cell for `text`: unchanged, or in double quotes with quotes doubled if it holds a comma,
+// a double quote, CR or LF (RFC 4180).
+[[nodiscard]] std::string csv_cell(std::string_view text);
+
+}  // namespace owsim

@@ -1,0 +1,18 @@
+#pragma once
+// The points of one frame: every detected return placed at its simulated range along its pulse's
+// ray (INTERFACE.md points.csv: "computed from range_m along the pulse's ray"), with its geodetic
+// position. object_index is the scene's object index (sensor/pulse_candidates.hpp: conductors,
+// cylinders, then the ground). Reuses the caller's vector, so a worker allocates nothing per frame
+// once it has grown.
+#include <vector>
+
+#include "geometry/geodetic_frame.hpp"
+#include "io/points/point_record.hpp"
+#include "sensor/frame_view.hpp"
+
+namespace owsim {
+
+void frame_points(const FrameView& frame, const LocalFrame& local_frame,
+                  std::vector<PointRecord>& out);
+
+}  // namespace owsim

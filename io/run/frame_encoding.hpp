@@ -1,0 +1,42 @@
+#pragma once
+// One frame's outputs encoded ahead of FlightOutputs::add_frame (io/run/flight_outputs.hpp): the
+// bytes every requested output file gets from the frame, and what the serial part needs besides
+// (the frame's points for the writers' counts, the pose at its first pulse). Filled by
+// FlightOutputs::encode_frame on any thread, so the serial sink of the flight pipeline only
+// appends ready bytes. Reused frame after frame: it allocates only while its buffers grow.
+#include <cstdint>
+#include <exception>
+#include <string>
+#include <vector>
+
+#include "io/points/las_writer.hpp"
+#include "io/points/point_record.hpp"
+#include "io/run/flight_summary.hpp"
+#include "sensor/mounting.hpp"
+
+namespace owsim {
+
+struct FrameEncoding {
+  std::int64_t frame = -1;  // the frame encoded; −1 before the first
+  Pose frame_start;         // the aircraft's pose at the frame's first pulse
+  FrameTally tally;         // the frame's part of summary.json
+  std::vector<PointRecord> points;
+  std::vector<std::uint64_t> milows_words;  // flight.d64 of a MilOWS scenario
+  std::vector<std::uint32_t> hellas_words;  // flight.hellas of a HELLAS scenario
+  std::uint32_t hellas_header_word = 0;     // written before the file's first frame only
+  std::string csv_rows;                     // points.csv
+  LasEncodedPoints las;                     // points.las
+  std::vector<unsigned char> ply_vertices;  // points.ply
+  // What encoding threw: add_frame rethrows it, so errors surface in frame order.
+  std::exception_ptr error;
+  // The per-pulse part as FlightOutputs::encode_pulses leaves it, one entry per scan line: a
+  // block's tally and error in the entry of its first line, the block's other lines empty.
+  // finish_encoding merges them, in line order, into `tally` and `error`.
+  struct LineBlock {
+    FrameTally tally;
+    std::exception_ptr error;
+  };
+  std::vector<LineBlock> line_blocks;
+};
+
+}  // namespace owsim

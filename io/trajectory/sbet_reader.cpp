@@ -1,0 +1,80 @@
+#include "io/trajectory/sbet_reader.hpp"
+
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <numbers>
+#include <string_view>
+
+#include "geometry/error.hpp"
+#include "io/files/little_endian.hpp"
+#include "sensor/trajectory.hpp"
+
+namespace owsim {
+namespace {
+
+constexpr double kDegPerRad = 180.0 / std::numbers::pi;
+constexpr std::array<std::string_view, 17> kFieldNames = {
+    "time",           "latitude",       "longitude",      "altitude",       "x velocity",
+    "y velocity",     "z velocity",     "roll",           "pitch",          "platform heading",
+    "wander angle",   "x acceleration", "y acceleration", "z acceleration", "x angular rate",
+    "y angular rate", "z angular rate"};
+enum Field : std::size_t {
+  time = 0,
+  lat = 1,
+  lon = 2,
+  alt = 3,
+  roll = 7,
+  pitch = 8,
+  heading = 9,
+  wander = 10
+};
+
+}  // namespace
+
+std::vector<NavRecord> read_sbet(const std::string& path) {
+  std::ifstream file(path, std::ios::binary | std::ios::ate);
+  if (!file) throw file_error(path, "cannot open the SBET trajectory file");
+  std::vector<unsigned char> bytes(static_cast<std::size_t>(file.tellg()));
+  file.seekg(0);
+  if (!file.read(reinterpret_cast<char*>(bytes.data()),
+                 static_cast<std::streamsize>(bytes.size()))) {
+    throw file_error(path, "cannot read the SBET trajectory file");
+  }
+  if (bytes.size() % kSbetRecordBytes != 0) {
+    throw input_error(path, "truncated record at byte " +
+                                std::to_string(bytes.size() / kSbetRecordBytes * kSbetRecordBytes) +
+                                " (the file holds " + std::to_string(bytes.size()) +
+                                " bytes, not a multiple of the 136-byte record)");
+  }
+  if (bytes.empty()) throw input_error(path, "holds no SBET records");
+  const std::size_t count = bytes.size() / kSbetRecordBytes;
+  std::vector<NavRecord> records(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::size_t offset = i * kSbetRecordBytes;
+    const std::string where =
+        path + ": record " + std::to_string(i) + " at byte " + std::to_string(offset);
+    std::array<double, 17> value{};
+    for (std::size_t f = 0; f < value.size(); ++f) {
+      value[f] = std::bit_cast<double>(load_little_endian<std::uint64_t>(&bytes[offset + 8 * f]));
+      if (!std::isfinite(value[f])) {
+        throw input_error(where, std::string(kFieldNames[f]) + " is not a finite number");
+      }
+    }
+    NavRecord& record = records[i];
+    record.time_s = value[Field::time];
+    record.position = {kDegPerRad * value[Field::lat], kDegPerRad * value[Field::lon],
+                       value[Field::alt]};
+    record.attitude = {kDegPerRad * value[Field::roll], kDegPerRad * value[Field::pitch],
+                       wrap_360_deg(kDegPerRad * (value[Field::heading] - value[Field::wander]))};
+    validate_geodetic(record.position, where);
+    if (i > 0 && !(record.time_s > records[i - 1].time_s)) {
+      throw input_error(where, "time is not after the previous record's");
+    }
+  }
+  return records;
+}
+
+}  // namespace owsim

@@ -1,0 +1,47 @@
+#include "io/trajectory/trajectory_loader.hpp"
+
+#include "geometry/error.hpp"
+#include "io/trajectory/hellsim_reader.hpp"
+#include "io/trajectory/sbet_reader.hpp"
+#include "io/trajectory/trajectory_csv_reader.hpp"
+#include "sensor/waypoint_plan.hpp"
+
+namespace owsim {
+
+NavTrack load_nav_track(const Scenario& scenario, const LocalFrame& frame) {
+  const TrajectorySpec& spec = scenario.trajectory;
+  if (spec.source == TrajectorySpec::Source::waypoints) {
+    WaypointPlan plan;
+    plan.speed_mps = spec.speed_mps;
+    plan.points_enu_m = spec.waypoints_enu_m;
+    plan.max_bank_deg = spec.max_bank_deg;
+    return waypoint_track(plan);
+  }
+  const std::string path = spec.file.string();
+  if (spec.format == "hellsim") {
+    HellSimOptions options;
+    options.tick_s = spec.tick_s;
+    return to_local(read_hellsim(path, options), frame);
+  }
+  if (spec.format == "csv") return to_local(read_trajectory_csv(path), frame);
+  if (spec.format == "sbet") return to_local(read_sbet(path), frame);
+  throw input_error(scenario.path.string() + ": trajectory.format",
+                    "unknown trajectory format '" + spec.format + "'");
+}
+
+Trajectory load_trajectory(const Scenario& scenario, const LocalFrame& frame) {
+  const TrajectorySpec& spec = scenario.trajectory;
+  TrajectoryOptions options;
+  if (spec.source == TrajectorySpec::Source::file) {
+    options.smoothing = SmoothingParams{spec.smoothing_window, spec.smoothing_degree};
+  } else {
+    options.smoothing = SmoothingParams{1, 0};
+  }
+  options.heading_magnetic = spec.heading_magnetic;
+  options.magnetic_variation_deg = spec.magnetic_variation_deg;
+  options.irs_noise = spec.irs_noise;
+  options.seed = scenario.seed;
+  return Trajectory(load_nav_track(scenario, frame), frame, options);
+}
+
+}  // namespace owsim
