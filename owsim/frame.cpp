@@ -1,5 +1,8 @@
 #include "owsim/frame.hpp"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <bit>
 
 #include "io/points/frame_points.hpp"
@@ -15,44 +18,73 @@ std::span<const std::byte> Frame::word_bytes() const {
   return std::as_bytes(std::span(milows_words_));
 }
 
+namespace {
+
+constexpr std::size_t kEncodeGrain = 1024;  // pulses per task
+
+ReturnRecord return_record(const PointRecord& point) {
+  ReturnRecord record;
+  record.frame = point.frame;
+  record.pulse = point.pulse;
+  record.line = point.line;
+  record.fiber = point.fiber;
+  record.return_number = point.return_number;
+  record.time_s = point.time_s;
+  record.range_m = point.range_m;
+  record.counter = point.counter;
+  record.surface = point.surface ? static_cast<std::uint8_t>(*point.surface) : kUnknownSurface;
+  record.number_of_returns = static_cast<std::uint8_t>(point.number_of_returns);
+  record.object = point.object_index;
+  record.e_m = point.enu_m.x();
+  record.n_m = point.enu_m.y();
+  record.u_m = point.enu_m.z();
+  record.lat_deg = point.geodetic.lat_deg;
+  record.lon_deg = point.geodetic.lon_deg;
+  record.h_m = point.geodetic.h_m;
+  record.energy_rel = point.energy_rel;
+  record.incidence_deg = point.incidence_deg;
+  return record;
+}
+
+}  // namespace
+
 void Frame::encode(const ScanParams& scan, const LocalFrame& local_frame) {
   model_ = scan.model;
+  const FrameView view = result_.view();
   const std::size_t pulses = result_.pulses.size();
   if (model_ == SensorModel::hellas) {
     milows_words_.clear();
     hellas_words_.resize(pulses);
-    pack_hellas_frame(scan, result_.sweep, result_.pulses, result_.returns, hellas_words_);
   } else {
     hellas_words_.clear();
     milows_words_.resize(pulses);
-    pack_milows_frame(result_.pulses, result_.returns, milows_words_);
   }
+  first_return_.resize(pulses + 1);
+  first_return_[0] = 0;
+  for (std::size_t k = 0; k < pulses; ++k) {
+    first_return_[k + 1] = first_return_[k] + static_cast<std::size_t>(result_.returns[k].count);
+  }
+  returns_.resize(first_return_[pulses]);
 
-  frame_points(result_.view(), local_frame, points_);
-  returns_.resize(points_.size());
-  for (std::size_t i = 0; i < points_.size(); ++i) {
-    const PointRecord& point = points_[i];
-    ReturnRecord& record = returns_[i];
-    record.frame = point.frame;
-    record.pulse = point.pulse;
-    record.line = point.line;
-    record.fiber = point.fiber;
-    record.return_number = point.return_number;
-    record.time_s = point.time_s;
-    record.range_m = point.range_m;
-    record.counter = point.counter;
-    record.surface = point.surface ? static_cast<std::uint8_t>(*point.surface) : kUnknownSurface;
-    record.number_of_returns = static_cast<std::uint8_t>(point.number_of_returns);
-    record.object = point.object_index;
-    record.e_m = point.enu_m.x();
-    record.n_m = point.enu_m.y();
-    record.u_m = point.enu_m.z();
-    record.lat_deg = point.geodetic.lat_deg;
-    record.lon_deg = point.geodetic.lon_deg;
-    record.h_m = point.geodetic.h_m;
-    record.energy_rel = point.energy_rel;
-    record.incidence_deg = point.incidence_deg;
-  }
+  const std::span<const Pulse> all_pulses(result_.pulses);
+  const std::span<const PulseReturns> all_returns(result_.returns);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pulses, kEncodeGrain), [&](const auto& r) {
+    const std::size_t n = r.size();
+    if (model_ == SensorModel::hellas) {
+      pack_hellas_frame(scan, result_.sweep, all_pulses.subspan(r.begin(), n),
+                        all_returns.subspan(r.begin(), n),
+                        std::span(hellas_words_).subspan(r.begin(), n));
+    } else {
+      pack_milows_frame(all_pulses.subspan(r.begin(), n), all_returns.subspan(r.begin(), n),
+                        std::span(milows_words_).subspan(r.begin(), n));
+    }
+    for (std::size_t k = r.begin(); k != r.end(); ++k) {
+      for (int i = 0; i < result_.returns[k].count; ++i) {
+        returns_[first_return_[k] + static_cast<std::size_t>(i)] =
+            return_record(point_record(view, k, i, local_frame));
+      }
+    }
+  });
 }
 
 }  // namespace owsim

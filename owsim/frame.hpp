@@ -63,14 +63,15 @@ class Frame {
 
  private:
   friend class Simulation;
-  // Words and return records from the simulated result_.
+  // Words and return records from the simulated result_, in parallel over blocks of pulses (call
+  // it inside the Simulation's task arena); the same values as one pass pulse by pulse.
   void encode(const ScanParams& scan, const LocalFrame& local_frame);
 
   SensorModel model_ = SensorModel::milows;
   FrameResult result_;
   std::vector<std::uint64_t> milows_words_;
   std::vector<std::uint32_t> hellas_words_;
-  std::vector<PointRecord> points_;  // frame_points' scratch
+  std::vector<std::size_t> first_return_;  // pulse k's returns start at returns_[first_return_[k]]
   std::vector<ReturnRecord> returns_;
 };
 

@@ -95,10 +95,13 @@ Trajectory pushed_trajectory(const FlightSetup& setup, std::int64_t frame,
   try {
     return Trajectory(track, setup.local_frame, options);
   } catch (const Error& error) {
-    std::string message = error.what();  // "trajectory record <i>: <problem>"
-    if (message.starts_with("trajectory record ")) {
+    // The trajectory says "trajectory record <i>: <problem>"; the host pushed poses[<i>].
+    constexpr std::string_view kRecord = "trajectory record ";
+    std::string message = error.what();
+    if (message.starts_with(kRecord)) {
       const std::size_t colon = message.find(':');
-      message = "poses[" + message.substr(18, colon - 18) + "]" + message.substr(colon);
+      message = "poses[" + message.substr(kRecord.size(), colon - kRecord.size()) + "]" +
+                message.substr(colon);
     }
     throw Error(message);
   }
@@ -123,8 +126,10 @@ struct Simulation::State {
   std::vector<std::string> ids;
 
   void simulate(std::int64_t frame, const PoseSource& poses, Frame& out) const {
-    arena.execute([&] { setup.simulator.simulate(frame, poses, out.result_); });
-    out.encode(setup.scenario.scan, setup.local_frame);
+    arena.execute([&] {
+      setup.simulator.simulate(frame, poses, out.result_);
+      out.encode(setup.scenario.scan, setup.local_frame);
+    });
   }
 };
 

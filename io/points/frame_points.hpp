@@ -12,6 +12,11 @@
 
 namespace owsim {
 
+// Return r (0-based) of pulse k of `frame` as a point.
+[[nodiscard]] PointRecord point_record(const FrameView& frame, std::size_t k, int r,
+                                       const LocalFrame& local_frame);
+
+// Every return of the frame, pulse by pulse and in return order, into `out` (cleared first).
 void frame_points(const FrameView& frame, const LocalFrame& local_frame,
                   std::vector<PointRecord>& out);
 
