@@ -27,6 +27,11 @@ case "$kind" in
     "$prefix/bin/owsim" run "$examples/single_span.yaml" --outputs d64 --quiet --out "$work/run"
     cmp "$work/words.d64" "$work/run/flight.d64"
     echo "words.d64 = owsim run's flight.d64 ($(wc -c <"$work/words.d64") bytes)"
+    # the installed owsim finds its optional image module (lib/owsim/libowsim_png.so)
+    "$prefix/bin/owsim" run "$examples/single_span.yaml" --outputs quicklook --frames 1 --quiet \
+      --out "$work/images"
+    test -s "$work/images/quicklook/map.png"
+    echo "installed owsim wrote quicklook/map.png through $(ls "$prefix"/lib*/owsim/)"
     ;;
   python)
     module=$(find "$prefix" -name 'owsim*.so' -path '*python*' | head -1)

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -271,6 +272,24 @@ TEST_F(CliErrors, UnwritableOutputFolderIsOneLine) {
       {"run", "good.yaml", "--out", "blocker/out", "--frames", "1", "--quiet"}, dir_.path());
   expect_one_line_error(result, {"blocker"}, dir_ / "blocker" / "out");
   EXPECT_EQ(test::read_whole_file(dir_ / "blocker"), "not a folder\n");
+}
+
+TEST_F(CliErrors, MissingImageModuleIsOneLineBeforeAnythingIsWritten) {
+  // Quick-look images need the optional module libowsim_png.so (OpenImageIO); where it cannot be
+  // loaded, the run says so at once and leaves no output behind. Words alone still run.
+  write_text(dir_ / "good.yaml", scenario());
+  ASSERT_EQ(::setenv("OWSIM_MODULE_DIR", (dir_ / "no_modules").c_str(), 1), 0);
+  const CliResult images = run_cli({"run", "good.yaml", "--out", "out", "--frames", "1",
+                                    "--outputs", "d64,quicklook", "--quiet"},
+                                   dir_.path());
+  const CliResult words = run_cli(
+      {"run", "good.yaml", "--out", "words", "--frames", "1", "--outputs", "d64", "--quiet"},
+      dir_.path());
+  ::unsetenv("OWSIM_MODULE_DIR");
+  expect_one_line_error(images, {"quick-look images", "libowsim_png.so", "no_modules"},
+                        dir_ / "out");
+  EXPECT_EQ(words.exit_status, 0) << words.err;
+  EXPECT_TRUE(fs::exists(dir_ / "words" / "flight.d64"));
 }
 
 }  // namespace

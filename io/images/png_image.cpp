@@ -1,15 +1,31 @@
 #include "io/images/png_image.hpp"
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
-
 #include <array>
 #include <string>
 
 #include "geometry/error.hpp"
+#include "io/files/optional_module.hpp"
+#include "io/images/png_module_abi.hpp"
 
 namespace owsim {
 namespace {
+
+constexpr std::string_view kPngPurpose = "quick-look images";
+
+// The PNG encoder of the optional module libowsim_png.so (OpenImageIO), loaded on first use.
+owsim_png_encode_fn png_encoder() {
+  static const owsim_png_encode_fn encode = [] {
+    const auto& module = OptionalModule::get("png", kPngPurpose);
+    const auto abi =
+        reinterpret_cast<owsim_png_module_abi_fn>(module.symbol("owsim_png_module_abi"));
+    if (abi() != OWSIM_PNG_MODULE_ABI) {
+      throw Error(std::string(kPngPurpose) + " need " + module.path() + " of interface " +
+                  std::to_string(OWSIM_PNG_MODULE_ABI) + ", found " + std::to_string(abi()));
+    }
+    return reinterpret_cast<owsim_png_encode_fn>(module.symbol("owsim_png_encode"));
+  }();
+  return encode;
+}
 
 constexpr int kMaxImageSidePx = 65'536;
 
@@ -84,15 +100,18 @@ Rgb8 range_ramp_colour(double t) {
   return {mix(a.r, b.r, w), mix(a.g, b.g, w), mix(a.b, b.b, w)};
 }
 
+void require_png_encoder() { static_cast<void>(png_encoder()); }
+
 std::vector<unsigned char> encode_png(const RgbImage& image) {
   std::vector<unsigned char> bytes;
-  OIIO::Filesystem::IOVecOutput proxy(bytes);
-  auto output = OIIO::ImageOutput::create("png", &proxy);
-  if (!output) throw Error("png: OpenImageIO has no PNG writer: " + OIIO::geterror());
-  const OIIO::ImageSpec spec(image.width(), image.height(), 3, OIIO::TypeDesc::UINT8);
-  if (!output->open("memory.png", spec) ||
-      !output->write_image(OIIO::TypeDesc::UINT8, image.bytes().data()) || !output->close()) {
-    throw Error("png: cannot encode the image: " + output->geterror());
+  std::array<char, 512> error{};
+  const owsim_png_sink append = [](void* context, const unsigned char* data, std::size_t size) {
+    auto& out = *static_cast<std::vector<unsigned char>*>(context);
+    out.insert(out.end(), data, data + size);
+  };
+  if (png_encoder()(image.bytes().data(), image.width(), image.height(), append, &bytes,
+                    error.data(), error.size()) != 0) {
+    throw Error(std::string("png: ") + error.data());
   }
   return bytes;
 }

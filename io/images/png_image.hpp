@@ -1,7 +1,8 @@
 #pragma once
 // A small 8-bit RGB raster for the quick-look images (INTERFACE.md "`owsim run` outputs",
 // quicklook/): set a pixel, draw a clipped line, fill a circle, enlarge by an integer factor, and
-// write the result as an 8-bit RGB PNG. The PNG is encoded in memory by OpenImageIO and written
+// write the result as an 8-bit RGB PNG. The PNG is encoded in memory by OpenImageIO (in the
+// optional module libowsim_png.so, loaded on first use) and written
 // through AtomicOutputFile, so nothing half-written appears under the final name.
 //
 // Pixel (x, y): x = column from the left, y = row from the top; pixel centres sit at integer
@@ -124,8 +125,12 @@ void fill_circle(RgbImage& image, int cx, int cy, int radius_px, Rgb8 colour);
 // t = 1 dark navy (8, 48, 107); NaN gives the far end.
 [[nodiscard]] Rgb8 range_ramp_colour(double t);
 
-// The image as PNG bytes (8-bit RGB), encoded in memory by OpenImageIO. Throws owsim::Error
-// with OIIO's message on failure.
+// Loads the PNG encoder (the optional module libowsim_png.so, OpenImageIO; see
+// io/files/optional_module.hpp) unless it is loaded; throws owsim::Error saying why it cannot be.
+// A run that will write images calls it before it writes anything.
+void require_png_encoder();
+// The image as PNG bytes (8-bit RGB), encoded in memory by OpenImageIO in libowsim_png.so.
+// Throws owsim::Error with OIIO's message on failure.
 [[nodiscard]] std::vector<unsigned char> encode_png(const RgbImage& image);
 // encode_png written to `<path>.partial` and renamed to `path` (AtomicOutputFile). Throws
 // owsim::Error naming the path.

@@ -8,6 +8,7 @@
 
 #include "geometry/error.hpp"
 #include "io/files/atomic_output_file.hpp"
+#include "io/images/png_image.hpp"
 #include "io/images/quicklook.hpp"
 #include "io/points/frame_points.hpp"
 #include "io/points/las_writer.hpp"
@@ -148,6 +149,8 @@ FlightOutputs::FlightOutputs(const FlightOutputOptions& options, const Scene& sc
       summary_(scene),
       checkpoint_path_(run_checkpoint_path(options_.directory)),
       last_checkpoint_(Clock::now()) {
+  // The images' optional module (OpenImageIO) is loaded before anything is written or removed.
+  if (wants(OutputKind::quicklook)) require_png_encoder();
   std::error_code error;
   std::filesystem::create_directories(options_.directory, error);
   if (error) {
