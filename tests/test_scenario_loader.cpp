@@ -660,10 +660,11 @@ TEST(ScenarioLoaderErrors, NonFiniteAndNegativeSizes) {
   const std::string m = kMinimal;
   expect_error(m + "sensor:\n  threshold: .nan\n", 8, "sensor.threshold", "expected a number");
   expect_error(m + "sensor:\n  prf_hz: inf\n", 8, "sensor.prf_hz", "expected a finite number");
-  expect_error(m + "sensor:\n  prf_hz: -5\n", 8, "sensor.prf_hz", "must be a finite number > 0");
+  expect_error(m + "sensor:\n  prf_hz: -5\n", 8, "sensor.prf_hz",
+               "must be in [1, 1000000] Hz, got -5");
   expect_error(
       m + "scene:\n  poles:\n    - {id: p, at: {e: 1, n: 1}, height_m: 5, diameter_m: -1}\n", 9,
-      "scene.poles[0].diameter_m", "must be > 0, got -1");
+      "scene.poles[0].diameter_m", "must be in [0.001, 20] m, got -1");
   expect_error(
       m + "scene:\n  trees:\n    - {id: t, at: {e: 1, n: 1}, height_m: 0, diameter_m: 1}\n", 9,
       "scene.trees[0].height_m", "must be > 0, got 0");
@@ -675,9 +676,9 @@ TEST(ScenarioLoaderErrors, NonFiniteAndNegativeSizes) {
       conductor: {diameter_mm: -20}
 )",
                12, "scene.spans[0].conductor.diameter_mm",
-               "must be a finite number > 0, got -20 mm");
-  expect_error(m + "  duration_s: -3\n", 7, "trajectory.duration_s", "must be > 0, got -3");
-  expect_error(m + "  start_s: -1\n", 7, "trajectory.start_s", "must be ≥ 0, got -1");
+               "must be in [1, 200] mm, got -20");
+  expect_error(m + "  duration_s: -3\n", 7, "trajectory.duration_s", "must be in [0, 86400] s, got -3");
+  expect_error(m + "  start_s: -1\n", 7, "trajectory.start_s", "must be in [0, 1e+10] s, got -1");
   expect_error(m + "    speed_mps: 50\n", 7, "trajectory.waypoints.speed_mps",
                "key 'speed_mps' given twice in trajectory.waypoints (first at line 5)");
   expect_error(R"(origin: {lat: 48, lon: 10, h: 0}
@@ -686,13 +687,13 @@ trajectory:
     speed_mps: 0
     points: [{e: 0, n: 0, u: 100}, {e: 100, n: 0, u: 100}]
 )",
-               4, "trajectory.waypoints.speed_mps", "must be > 0, got 0");
+               4, "trajectory.waypoints.speed_mps", "must be in [1, 150] m/s, got 0");
   expect_error(m + "scene:\n  forest: {count: 5, height_m: [25, 8]}\n", 8, "scene.forest.height_m",
                "must be a finite range [min, max] with min ≤ max, got [25, 8]");
   expect_error(m + "scene:\n  forest: {count: -1}\n", 8, "scene.forest.count",
-               "must be an integer in [0, 1000000], got -1");
+               "must be in [0, 1000000], got -1");
   expect_error(m + "scene:\n  terrain: {flat_u: 0, reflectivity: 1.5}\n", 8,
-               "scene.terrain.reflectivity", "must be between 0 and 1, got 1.5");
+               "scene.terrain.reflectivity", "must be in [0, 1], got 1.5");
 }
 
 TEST(ScenarioLoaderErrors, ImpossibleValues) {
@@ -719,7 +720,7 @@ TEST(ScenarioLoaderErrors, ImpossibleValues) {
   expect_error(m + "scene:\n  spans:\n    - {id: a, from: {e: 5, n: 5}, to: {e: 5, n: 5}}\n", 9,
                "scene.spans[0].to", "the two supports stand at the same place");
   expect_error(m + "sensor:\n  threshold: 1.5\n", 8, "sensor.threshold",
-               "must be an energy ratio in [0, 1], got 1.5");
+               "must be in [0, 1], got 1.5");
   expect_error(m + "sensor:\n  model: milos\n", 8, "sensor.model",
                "expected one of milows | hellas, got 'milos'");
   expect_error(m + "sensor:\n  returns: last\n", 8, "sensor.returns",
@@ -730,22 +731,22 @@ TEST(ScenarioLoaderErrors, ImpossibleValues) {
   expect_error(m + "sensor:\n  alpha_table_deg: [1, 2]\n", 8, "sensor.alpha_table_deg",
                "holds 2 angles");
   expect_error(m + "sensor:\n  counter:\n    speed_of_light_mps: -1\n", 9,
-               "sensor.counter.speed_of_light_mps", "must be a finite number > 0");
+               "sensor.counter.speed_of_light_mps", "must be in [290000000, 300000000] m/s, got -1");
   expect_error(m + "sensor:\n  counter: {timeout_counts: 5000}\n", 8,
                "sensor.counter.timeout_counts", "must be an integer in [1, 4095], got 5000");
   expect_error(m + "sensor:\n  reference_counts: 4096\n", 8, "sensor.reference_counts",
                "must be an integer in [0, 4095]");
   expect_error(m + "atmosphere: {transmission: 1.5}\n", 7, "atmosphere.transmission",
-               "must be a two-way fraction in (0, 1], got 1.5");
+               "must be in [0, 1], got 1.5");
   expect_error(m + "atmosphere: {transmission: 0.9, visibility_km: 5}\n", 7,
                "atmosphere.visibility_km", "give transmission or visibility_km, not both");
   expect_error(m + "atmosphere: {visibility_km: -5}\n", 7, "atmosphere.visibility_km",
-               "must be a finite number > 0");
-  expect_error("name: x\norigin: {lat: 91, lon: 10, h: 0}\ntrajectory: {}\n", 2, "origin",
-               "latitude 91° is outside [-90°, 90°]");
+               "must be in [0.001, 1000] km, got -5");
+  expect_error("name: x\norigin: {lat: 91, lon: 10, h: 0}\ntrajectory: {}\n", 2, "origin.lat",
+               "must be in [-90, 90] deg, got 91");
   expect_error("name: a/b\n" + m.substr(m.find('\n') + 1), 1, "name", "without '/'");
   expect_error(m + "    max_bank_deg: 90\n", 7, "trajectory.waypoints.max_bank_deg",
-               "must be in (0, 90) degrees");
+               "must be in [1, 60] deg, got 90");
   expect_error(R"(origin: {lat: 48, lon: 10, h: 0}
 trajectory:
   waypoints:
@@ -825,7 +826,7 @@ TEST(ScenarioLoaderErrors, Positions) {
   expect_error(m + "scene:\n  poles:\n    - {id: p, at: {utm: \"99Q 1 2\"}" + tail, 9,
                "scene.poles[0].at.utm", "UTM position \"99Q 1 2\"");
   expect_error(m + "scene:\n  poles:\n    - {id: p, at: {lat: 95, lon: 10}" + tail, 9,
-               "scene.poles[0].at", "latitude 95° is outside");
+               "scene.poles[0].at.lat", "must be in [-90, 90] deg, got 95");
   expect_error(m + "scene:\n  poles:\n    - {id: p, at: {e: 1}" + tail, 9, "scene.poles[0].at.n",
                "required, but missing from scene.poles[0].at");
   expect_error(m + "scene:\n  spans:\n    - {id: s, from: {e: 0, n: 0, u: 5}, to: {e: 9, n: 0}}\n",

@@ -8,6 +8,7 @@
 #include "geometry/error.hpp"
 #include "geometry/forest.hpp"
 #include "geometry/span.hpp"
+#include "io/scenario/value_ranges.hpp"
 #include "sensor/savitzky_golay.hpp"
 #include "sensor/scan_params_check.hpp"
 
@@ -39,6 +40,92 @@ void require_fraction(double value, const std::string& key) {
   if (!(value >= 0.0 && value <= 1.0)) {
     throw input_error(key, "must be between 0 and 1, got " + number_text(value));
   }
+}
+
+// The physical range of `key` (io/scenario/value_ranges.hpp), as the loader checks it.
+void require_in_range(double value, const std::string& key) {
+  if (const std::string problem = out_of_range_problem(key, value); !problem.empty()) {
+    throw input_error(key, problem);
+  }
+}
+
+void require_position_in_range(const Eigen::Vector3d& enu_m, const std::string& key) {
+  require_in_range(enu_m.x(), key + ".e");
+  require_in_range(enu_m.y(), key + ".n");
+  require_in_range(enu_m.z(), key + ".u");
+}
+
+void check_ranges(const Scenario& scenario) {
+  require_in_range(scenario.origin.lat_deg, "origin.lat");
+  require_in_range(scenario.origin.lon_deg, "origin.lon");
+  require_in_range(scenario.origin.h_m, "origin.h");
+  const ScanParams& scan = scenario.scan;
+  require_in_range(scan.prf_hz, "sensor.prf_hz");
+  require_in_range(scan.fibers_per_line, "sensor.fibers_per_line");
+  require_in_range(scan.lines_per_frame, "sensor.lines_per_frame");
+  require_in_range(scan.sweep_deg, "sensor.sweep_deg");
+  require_in_range(scan.sawtooth_deg, "sensor.sawtooth_deg");
+  require_in_range(scan.frame_jitter_deg, "sensor.frame_jitter_deg");
+  require_in_range(scan.look_into_turn_s, "sensor.look_into_turn_s");
+  require_in_range(scan.look_into_turn_limit_deg, "sensor.look_into_turn_limit_deg");
+  require_in_range(scan.hellas_mirror_angle_factor_deg, "sensor.hellas_mirror_angle_factor_deg");
+  for (std::size_t i = 0; i < scan.alpha_table_deg.size(); ++i) {
+    require_in_range(scan.alpha_table_deg[i], indexed("sensor.alpha_table_deg", i));
+  }
+  require_in_range(scenario.receiver.threshold, "sensor.threshold");
+  require_in_range(scenario.receiver.range_noise_sigma_m, "sensor.range_noise_sigma_m");
+  require_in_range(scenario.receiver.min_return_separation_m, "sensor.min_return_separation_m");
+  require_in_range(scenario.mount.roll_deg, "sensor.mount.roll_deg");
+  require_in_range(scenario.mount.pitch_deg, "sensor.mount.pitch_deg");
+  require_in_range(scenario.mount.yaw_deg, "sensor.mount.yaw_deg");
+  for (int axis = 0; axis < 3; ++axis) {
+    require_in_range(scenario.mount.lever_arm_m[axis], indexed("sensor.mount.lever_arm_m", axis));
+  }
+  const TrajectorySpec& trajectory = scenario.trajectory;
+  if (trajectory.source == TrajectorySpec::Source::waypoints) {
+    require_in_range(trajectory.speed_mps, "trajectory.waypoints.speed_mps");
+    require_in_range(trajectory.max_bank_deg, "trajectory.waypoints.max_bank_deg");
+    for (std::size_t i = 0; i < trajectory.waypoints_enu_m.size(); ++i) {
+      require_position_in_range(trajectory.waypoints_enu_m[i],
+                                indexed("trajectory.waypoints.points", i));
+    }
+  }
+  require_in_range(trajectory.start_s, "trajectory.start_s");
+  if (trajectory.duration_s) require_in_range(*trajectory.duration_s, "trajectory.duration_s");
+  const SceneSpec& scene = scenario.scene;
+  if (scene.terrain.kind == TerrainKind::flat) {
+    require_in_range(scene.terrain.flat_u_m, "scene.terrain.flat_u");
+  }
+  require_in_range(scene.terrain.reflectivity, "scene.terrain.reflectivity");
+  for (std::size_t i = 0; i < scene.spans.size(); ++i) {
+    const SpanSpec& span = scene.spans[i];
+    const std::string key = indexed("scene.spans", i);
+    require_position_in_range({span.from_en.x(), span.from_en.y(), 0.0}, key + ".from");
+    require_position_in_range({span.to_en.x(), span.to_en.y(), 0.0}, key + ".to");
+    require_in_range(span.support_height_1_m, key + ".support_heights_m[0]");
+    require_in_range(span.support_height_2_m, key + ".support_heights_m[1]");
+    require_in_range(span.lowest_point_m, key + ".lowest_point_m");
+    require_in_range(1000.0 * span.conductor_diameter_m, key + ".conductor.diameter_mm");
+    require_in_range(span.conductor_reflectivity, key + ".conductor.reflectivity");
+    require_in_range(span.pole_diameter_m, key + ".supports.diameter_m");
+    require_in_range(span.pole_reflectivity, key + ".supports.reflectivity");
+    for (std::size_t k = 0; k < span.offsets.size(); ++k) {
+      require_in_range(span.offsets[k].lateral_m, indexed(key + ".layout", k) + "[0]");
+      require_in_range(span.offsets[k].vertical_m, indexed(key + ".layout", k) + "[1]");
+    }
+  }
+  for (const auto& [list, cylinders] :
+       {std::pair{"scene.poles", &scene.poles}, std::pair{"scene.trees", &scene.trees}}) {
+    for (std::size_t i = 0; i < cylinders->size(); ++i) {
+      const Cylinder& cylinder = (*cylinders)[i];
+      const std::string key = indexed(list, i);
+      require_position_in_range(cylinder.base_enu_m, key + ".at");
+      require_in_range(cylinder.height_m, key + ".height_m");
+      require_in_range(2.0 * cylinder.radius_m, key + ".diameter_m");
+      require_in_range(cylinder.reflectivity, key + ".reflectivity");
+    }
+  }
+  if (scene.forest) require_in_range(scene.forest->count, "scene.forest.count");
 }
 
 void check_name(const std::string& name) {
@@ -155,6 +242,7 @@ void check_scene(const Scenario& scenario) {
 
 void validate_scenario(const Scenario& scenario) {
   check_name(scenario.name);
+  check_ranges(scenario);
   validate_geodetic(scenario.origin, "origin");
   validate(scenario.scan);
   validate(scenario.receiver);

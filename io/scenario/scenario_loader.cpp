@@ -11,6 +11,7 @@
 #include "geometry/error.hpp"
 #include "geometry/utm.hpp"
 #include "io/scenario/esri_ascii_grid.hpp"
+#include "io/scenario/value_ranges.hpp"
 #include "io/scenario/yaml_reader.hpp"
 #include "sensor/scan_params_check.hpp"
 
@@ -630,12 +631,14 @@ class ScenarioReader {
 }  // namespace
 
 Scenario load_scenario(const std::filesystem::path& path) {
-  const YamlSource source = YamlSource::from_file(path);
+  YamlSource source = YamlSource::from_file(path);
+  source.check_ranges_with(out_of_range_problem);
   return ScenarioReader(source, path).read();
 }
 
 Scenario load_scenario_text(std::string_view yaml, const std::filesystem::path& path) {
-  const YamlSource source = YamlSource::from_text(yaml, path.string());
+  YamlSource source = YamlSource::from_text(yaml, path.string());
+  source.check_ranges_with(out_of_range_problem);
   return ScenarioReader(source, path).read();
 }
 

@@ -154,7 +154,15 @@ double YamlValue::number() const {
     fail("expected a number, got " + describe());
   }
   if (!std::isfinite(value)) fail("expected a finite number, got " + describe());
+  check_range(value);
   return value;
+}
+
+void YamlValue::check_range(double value) const {
+  if (source_->range_check() == nullptr) return;
+  if (const std::string problem = source_->range_check()(path_, value); !problem.empty()) {
+    fail(problem);
+  }
 }
 
 std::int64_t YamlValue::integer(std::int64_t min, std::int64_t max) const {
@@ -170,6 +178,7 @@ std::int64_t YamlValue::integer(std::int64_t min, std::int64_t max) const {
   if (status != std::errc() || end != text.data() + text.size()) {
     fail("expected an integer, got " + describe());
   }
+  check_range(static_cast<double>(value));
   if (value < min || value > max) {
     fail("must be an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "], got " +
          std::to_string(value));

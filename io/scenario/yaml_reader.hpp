@@ -53,6 +53,12 @@ class YamlSource {
   [[noreturn]] void rethrow_at_key(const Error& error, std::string_view fallback_path,
                                    const std::map<std::string, std::string>& renamed = {}) const;
 
+  // A check of every number read (YamlValue::number, integer, numbers): the problem with `value`
+  // at `key_path`, or "" when it is fine (io/scenario/value_ranges.hpp for scenarios).
+  using RangeCheck = std::string (*)(std::string_view key_path, double value);
+  void check_ranges_with(RangeCheck check) { range_check_ = check; }
+  [[nodiscard]] RangeCheck range_check() const { return range_check_; }
+
   // Records that `key_path` was read at `line` (1-based); YamlMap does this for every key.
   void note_key(const std::string& key_path, int line) const { lines_[key_path] = line; }
 
@@ -68,6 +74,7 @@ class YamlSource {
   YAML::Node root_;
   std::string file_name_;
   mutable std::map<std::string, int, std::less<>> lines_;
+  RangeCheck range_check_ = nullptr;
 };
 
 // One value of the file with its key path and line. Keeps a pointer to its YamlSource, which
@@ -113,6 +120,8 @@ class YamlValue {
   [[nodiscard]] std::string describe() const;
 
  private:
+  void check_range(double value) const;  // the source's RangeCheck, if it has one
+
   const YamlSource* source_;
   YAML::Node node_;
   std::string path_;
