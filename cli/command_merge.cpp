@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "cli/commands.hpp"
+#include "cli/option_checks.hpp"
 #include "cli/recording_command.hpp"
 #include "io/recording/recording_merge.hpp"
 
@@ -47,7 +48,8 @@ void add_merge_command(CLI::App& app, CommandResult& /*result*/) {
       *command, *options,
       {"RECORDING", "scenario file: the sensor, its mount, the trajectory, the objects to add",
        "the merged recording (same format)"});
-  command->add_option("--seed", options->overrides.seed, "override the scenario's seed");
+  command->add_option("--seed", options->overrides.seed, "override the scenario's seed")
+      ->check(seed_number());
   command->add_flag("--no-noise", options->overrides.no_noise, "range noise off (σ = 0)");
   command->footer(
       "Where a synthetic return is nearer than the recorded first return (or the pulse had none) "

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "cli/commands.hpp"
+#include "cli/option_checks.hpp"
 #include "geometry/error.hpp"
 #include "sensor/scan_params.hpp"
 #include "sensor/scan_params_check.hpp"
@@ -63,7 +64,7 @@ void write_pattern(const PatternOptions& options) {
 }  // namespace
 
 void add_pattern_command(CLI::App& app, CommandResult&) {
-  // CLI11 would read "-4" into an unsigned seed as 2^64 − 4: refuse a sign on either number.
+  // CLI11 would read "-4" into an unsigned frame index as 2^64 − 4: refuse a sign.
   const CLI::Validator kNonNegative(
       [](const std::string& text) {
         return text.starts_with('-') ? std::string("must be ≥ 0") : std::string();
@@ -78,7 +79,7 @@ void add_pattern_command(CLI::App& app, CommandResult&) {
       ->check(kNonNegative)
       ->capture_default_str();
   command->add_option("--seed", options->seed, "seed of the frame-start jitter")
-      ->check(kNonNegative)
+      ->check(seed_number())
       ->capture_default_str();
   command->callback([options] { write_pattern(*options); });
 }

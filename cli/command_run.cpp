@@ -38,7 +38,8 @@ void add_run_command(CLI::App& app, CommandResult& /*result*/) {
   command
       ->add_option("--threads", options->simulation.threads, "worker threads (default: every core)")
       ->check(positive_number());
-  command->add_option("--seed", options->simulation.seed, "override the scenario's seed");
+  command->add_option("--seed", options->simulation.seed, "override the scenario's seed")
+      ->check(seed_number());
   command->add_option("--outputs", options->outputs,
                       "comma list of d64, points, trajectory, summary, quicklook (default: all)");
   command->add_flag("--no-noise", options->simulation.no_noise, "range noise off (σ = 0)");

@@ -1,6 +1,8 @@
 #include "owsim/flight_run.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -107,7 +109,11 @@ void simulate_frames(const FrameSimulator& simulator, const FlightSetup& setup,
   // returns) to what competes with the scene for the cache. `owsim bench` on the corridor with 2
   // threads: 19.9-20.0 M pulses/s with 2 frames in flight, 19.2-19.4 M with 3, 19.0-19.4 M with
   // 1; single-threaded, 10.1-10.2 M with 1 frame in flight and 9.8 M with 2.
-  const int frames_in_flight = std::max(1, threads);
+  // Never more than the frames to run, nor than the cores that can work on them at once: a
+  // thread count above the cores (`--threads 4096` on 2 cores) adds buffers, not speed.
+  const auto cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int frames_in_flight = static_cast<int>(
+      std::max<std::int64_t>(1, std::min<std::int64_t>({threads, cores, range.frame_count})));
   // One encoding per buffer of the pipeline: a frame is encoded where it is simulated, in the
   // parallel stage, and the in-order sink only appends its bytes. The words and the summary's
   // tally are encoded block by block while the simulation has the block's pulses and returns in

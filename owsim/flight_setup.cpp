@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <utility>
 
 #include "geometry/error.hpp"
 #include "io/scenario/scene_builder.hpp"
+#include "io/scenario/value_ranges.hpp"
 #include "io/trajectory/trajectory_loader.hpp"
 #include "sensor/range_counter.hpp"
 
@@ -14,17 +16,51 @@ namespace owsim {
 namespace {
 
 constexpr int kMaxThreads = 4096;
+// The longest run, in frames (about 38 days of sensor time): counts stay far from overflow.
+constexpr std::int64_t kMaxFrames = 10'000'000;
+
+std::string metres_text(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", value);
+  return text;
+}
+
+// Throws "<where>: lies … m from the scenario origin; …" unless every coordinate of `enu_m` is
+// within kMaxOffsetFromOriginM: the ray tracer works in floats relative to the origin.
+void require_near_origin(const Eigen::Vector3d& enu_m, const std::string& where) {
+  const double offset = enu_m.cwiseAbs().maxCoeff();
+  if (offset <= kMaxOffsetFromOriginM) return;
+  throw input_error(where, "lies " + metres_text(offset) +
+                               " m from the scenario origin; owsim simulates within " +
+                               metres_text(kMaxOffsetFromOriginM) +
+                               " m of it (the ray tracer's float coordinates keep 16 mm there): "
+                               "put the origin near the flight");
+}
+
+const Scene& checked_near_origin(const Scene& scene, const std::string& scenario) {
+  for (const Conductor& conductor : scene.conductors) {
+    for (const auto& point : conductor.points_enu_m) {
+      require_near_origin(point, scenario + ": scene object '" + conductor.id + "'");
+    }
+  }
+  for (const Cylinder& cylinder : scene.cylinders) {
+    require_near_origin(cylinder.base_enu_m + Eigen::Vector3d(0, 0, cylinder.height_m),
+                        scenario + ": scene object '" + cylinder.id + "'");
+  }
+  return scene;
+}
 
 // Options that cannot describe a run, named as `owsim run` spells them.
 void check_options(const SimulationOptions& options) {
   if (options.frames && options.duration_s) {
     throw input_error("--frames", "give --frames or --duration, not both");
   }
-  if (options.frames && *options.frames < 1) {
-    throw input_error("--frames", "must be at least 1, got " + std::to_string(*options.frames));
+  if (options.frames && !(*options.frames >= 1 && *options.frames <= kMaxFrames)) {
+    throw input_error("--frames", "must be in [1, " + std::to_string(kMaxFrames) + "], got " +
+                                      std::to_string(*options.frames));
   }
-  if (options.duration_s && !(*options.duration_s > 0 && std::isfinite(*options.duration_s))) {
-    throw input_error("--duration", "must be a positive number of seconds");
+  if (options.duration_s && !(*options.duration_s > 0 && *options.duration_s <= 86'400.0 * 38)) {
+    throw input_error("--duration", "must be a positive number of seconds up to 38 days");
   }
   if (options.threads < 0 || options.threads > kMaxThreads) {
     throw input_error("--threads", "must be between 1 and " + std::to_string(kMaxThreads) +
@@ -61,14 +97,20 @@ std::int64_t frame_count(const SimulationOptions& options, const Scenario& scena
                           " s, before the trajectory begins (" +
                           std::to_string(trajectory.start_s()) + " s)");
   }
+  const double fit = std::floor((trajectory.end_s() - scan.start_s) / frame_s);
+  if (!std::isfinite(fit)) {
+    throw input_error(scenario_name(scenario) + ": trajectory",
+                      "its times do not give a finite length of flight");
+  }
   const auto available =
-      static_cast<std::int64_t>(std::floor((trajectory.end_s() - scan.start_s) / frame_s));
+      static_cast<std::int64_t>(std::clamp(fit, 0.0, static_cast<double>(kMaxFrames)));
   std::int64_t frames = available;
   if (options.frames) {
     frames = *options.frames;
   } else if (const auto duration =
                  options.duration_s ? options.duration_s : scenario.trajectory.duration_s) {
-    frames = static_cast<std::int64_t>(std::floor(*duration / frame_s + 1e-9));
+    frames = static_cast<std::int64_t>(
+        std::min(std::floor(*duration / frame_s + 1e-9), static_cast<double>(kMaxFrames) + 1));
   }
   if (frames < 1) {
     throw input_error(
@@ -83,13 +125,21 @@ std::int64_t frame_count(const SimulationOptions& options, const Scenario& scena
   return frames;
 }
 
-// The east/north extent of the trajectory over the run (sampled at every frame start).
-Eigen::AlignedBox2d flight_extent(const Trajectory& trajectory, const ScanParams& scan,
+// The east/north extent of the trajectory over the run (sampled at every frame start), every
+// sample near the origin (require_near_origin).
+Eigen::AlignedBox2d flight_extent(const Trajectory& trajectory, const Scenario& scenario,
                                   std::int64_t frames) {
+  const ScanParams& scan = scenario.scan;
+  const std::string source = scenario.trajectory.source == TrajectorySpec::Source::file
+                                 ? scenario.trajectory.file.string()
+                                 : scenario_name(scenario) + ": trajectory.waypoints";
   Eigen::AlignedBox2d box;
   for (std::int64_t f = 0; f <= frames; ++f) {
-    const Pose pose = trajectory.pose_at(
-        pulse_time_s(scan, std::min(f, frames - 1), f == frames ? scan.pulses_per_frame() - 1 : 0));
+    const double t_s =
+        pulse_time_s(scan, std::min(f, frames - 1), f == frames ? scan.pulses_per_frame() - 1 : 0);
+    const Pose pose = trajectory.pose_at(t_s);
+    require_near_origin(pose.position_enu_m,
+                        source + ": the flight at t = " + metres_text(t_s) + " s");
     box.extend(pose.position_enu_m.head<2>());
   }
   return box;
@@ -125,9 +175,9 @@ FlightSetup::FlightSetup(Scenario scenario_in, const SimulationOptions& options)
       scene(build_scene(scenario)),
       trajectory(load_trajectory(scenario, local_frame)),
       frames(frame_count(options, scenario, trajectory)),
-      flown(flight_extent(trajectory, scenario.scan, frames)),
+      flown(flight_extent(trajectory, scenario, frames)),
       area(flight_area(flown, options)),
-      embree_scene(device, scene, scenario.receiver,
+      embree_scene(device, checked_near_origin(scene, scenario_name(scenario)), scenario.receiver,
                    reach_of(area, timeout_range_m(scenario.receiver.counter)),
                    timeout_range_m(scenario.receiver.counter)),
       simulator(

@@ -292,5 +292,41 @@ TEST_F(CliErrors, MissingImageModuleIsOneLineBeforeAnythingIsWritten) {
   EXPECT_TRUE(fs::exists(dir_ / "words" / "flight.d64"));
 }
 
+TEST_F(CliErrors, SeedsThatWouldWrapAreRefused) {
+  // CLI11 alone read -1 as 2^64 - 1 and 2^64 as 0: two seeds ran as one.
+  write_text(dir_ / "good.yaml", scenario());
+  for (const std::string seed : {"-1", "18446744073709551616", "1e3"}) {
+    const CliResult result =
+        run_cli({"run", "good.yaml", "--out", "out", "--frames", "1", "--seed", seed, "--quiet"},
+                dir_.path());
+    expect_one_line_error(result, {"--seed", "18446744073709551615", seed}, dir_ / "out");
+  }
+}
+
+TEST_F(CliErrors, AFlightOrObjectFarFromTheOriginIsRefusedBeforeTheRayTracer) {
+  // Positions far from the origin reached Embree (floats) and aborted it; a waypoint or a pole
+  // given in lat/lon is within every key's range yet thousands of km from the origin.
+  const std::string far_flight =
+      "trajectory:\n"
+      "  waypoints:\n"
+      "    speed_mps: 40\n"
+      "    points:\n"
+      "      - {lat: 10, lon: 10, h: 100}\n"
+      "      - {lat: 10.01, lon: 10, h: 100}\n"
+      "  duration_s: 1\n";
+  CliResult result = run_scenario(scenario(far_flight));
+  expect_one_line_error(result,
+                        {"bad.yaml: trajectory.waypoints: the flight at t = 0 s",
+                         "m from the "
+                         "scenario origin",
+                         "within 200000 m"},
+                        dir_ / "out");
+  const std::string far_pole = kSpan +
+                               "  poles:\n    - {id: far, at: {lat: 10, lon: 10}, "
+                               "height_m: 10, diameter_m: 1}\n";
+  result = run_scenario(scenario(kWaypoints, far_pole));
+  expect_one_line_error(result, {"scene object 'far'", "m from the scenario origin"}, dir_ / "out");
+}
+
 }  // namespace
 }  // namespace owsim
