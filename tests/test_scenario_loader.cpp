@@ -844,7 +844,7 @@ TEST(ScenarioLoaderErrors, TerrainFiles) {
   const std::string m = kMinimal;
   EXPECT_EQ(error_of(m + "scene:\n  terrain: {grid: nothere.asc}\n", scenario),
             where + "8: scene.terrain.grid: " + (folder.path() / "nothere.asc").string() +
-                ": cannot open the terrain grid file");
+                ": cannot read the terrain grid file: no such file");
   EXPECT_EQ(error_of(m + "scene:\n  terrain: {grid: bad.asc}\n", scenario),
             where + "8: scene.terrain.grid: " + (folder.path() / "bad.asc").string() +
                 ":5: unknown header key 'cellsiz'");
@@ -877,7 +877,7 @@ TEST(ScenarioLoaderErrors, UnreadableFile) {
     (void)load_scenario("/nonexistent/owsim/s.yaml");
     ADD_FAILURE() << "accepted";
   } catch (const Error& error) {
-    EXPECT_STREQ(error.what(), "/nonexistent/owsim/s.yaml: cannot read the file");
+    EXPECT_STREQ(error.what(), "/nonexistent/owsim/s.yaml: cannot read the YAML file: no such file");
   }
 }
 

@@ -256,7 +256,7 @@ TEST(Simulation, BadInputIsOneLineError) {
     (void)Simulation::open("/nonexistent/scenario.yaml");
     FAIL() << "no error";
   } catch (const FileError& error) {
-    EXPECT_EQ(std::string(error.what()), "/nonexistent/scenario.yaml: cannot read the file");
+    EXPECT_EQ(std::string(error.what()), "/nonexistent/scenario.yaml: cannot read the YAML file: no such file");
   }
   EXPECT_EQ(
       error_of([] { (void)Simulation::from_yaml("name: [", "bad.yaml"); }).rfind("bad.yaml:", 0),

@@ -194,7 +194,7 @@ TEST(YamlReader, EmptyDocumentIsNotAMapping) {
 
 TEST(YamlReader, UnreadableFile) {
   EXPECT_EQ(error_of([] { (void)YamlSource::from_file("/nonexistent/owsim/x.yaml"); }),
-            "/nonexistent/owsim/x.yaml: cannot read the file");
+            "/nonexistent/owsim/x.yaml: cannot read the YAML file: no such file");
 }
 
 TEST(YamlReader, FromFileReadsTheFile) {

@@ -11,6 +11,7 @@
 
 #include "geometry/error.hpp"
 #include "io/files/atomic_output_file.hpp"
+#include "io/files/input_file.hpp"
 
 namespace owsim {
 namespace {
@@ -256,9 +257,7 @@ void write_run_checkpoint(const std::filesystem::path& path, const RunCheckpoint
 std::optional<RunCheckpoint> read_run_checkpoint(const std::filesystem::path& path) {
   std::error_code error;
   if (!std::filesystem::exists(path, error)) return std::nullopt;
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw file_error(path.string(), std::string("cannot open: ") + std::strerror(errno));
-  const std::string text{std::istreambuf_iterator<char>(file), {}};
+  const std::string text = read_input_file(path, "run checkpoint", kMaxCheckpointBytes);
   try {
     const json in = json::parse(text);
     if (in.at("format") != kFormat || in.at("version") != kRunCheckpointVersion) {

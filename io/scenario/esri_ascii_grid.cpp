@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "geometry/error.hpp"
+#include "io/files/input_file.hpp"
 
 namespace owsim {
 namespace {
@@ -60,6 +61,7 @@ class GridReader {
   explicit GridReader(const std::string& path) : path_(path) {}
 
   HeightGrid read() {
+    file_bytes_ = require_input_file(path_, "terrain grid file", kMaxTerrainGridBytes);
     std::ifstream file(path_);
     if (!file) throw file_error(path_, "cannot open the terrain grid file");
     std::string line;
@@ -140,6 +142,13 @@ class GridReader {
     if (const auto found = header_.find("nodata_value"); found != header_.end()) {
       grid_.nodata = found->second;
     }
+    // Each value takes at least two bytes (a digit and a separator): a header that claims more
+    // cells than the file can hold is refused before anything is reserved for them.
+    if (expected_count() > file_bytes_ / 2 + 1) {
+      fail("the header's " + std::to_string(grid_.ncols) + " columns × " +
+           std::to_string(grid_.nrows) + " rows cannot fit in the file's " +
+           std::to_string(file_bytes_) + " bytes");
+    }
     grid_.heights.reserve(expected_count());
   }
 
@@ -158,6 +167,7 @@ class GridReader {
   }
 
   std::string path_;
+  std::uintmax_t file_bytes_ = 0;
   int line_number_ = 0;
   std::map<std::string, double> header_;
   HeightGrid grid_;

@@ -8,8 +8,8 @@ namespace owsim {
 namespace {
 
 constexpr double kFar = kMaxOffsetFromOriginM;
-constexpr double kLowestM = -1'000.0;    // below the Dead Sea shore, with the geoid
-constexpr double kHighestM = 10'000.0;   // above any helicopter's ceiling
+constexpr double kLowestM = -1'000.0;   // below the Dead Sea shore, with the geoid
+constexpr double kHighestM = 10'000.0;  // above any helicopter's ceiling
 
 constexpr std::array kRanges = {
     // Any position: {e, n, u} in the local frame, or {lat, lon, h} on WGS-84.
@@ -118,8 +118,8 @@ const ValueRange* value_range_of(std::string_view key_path) {
 std::string out_of_range_problem(std::string_view key_path, double value) {
   const ValueRange* range = value_range_of(key_path);
   if (range == nullptr || (value >= range->min && value <= range->max)) return {};
-  std::string problem = "must be in [" + number_text(range->min) + ", " + number_text(range->max) +
-                        "]";
+  std::string problem =
+      "must be in [" + number_text(range->min) + ", " + number_text(range->max) + "]";
   if (!range->unit.empty()) problem += " " + std::string(range->unit);
   return problem + ", got " + number_text(value);
 }

@@ -7,6 +7,8 @@
 #include <iterator>
 #include <sstream>
 
+#include "io/files/input_file.hpp"
+
 namespace owsim {
 namespace {
 
@@ -74,12 +76,7 @@ int line_1based(const YAML::Mark& mark) { return mark.is_null() ? 1 : mark.line 
 // ---- YamlSource ----
 
 YamlSource YamlSource::from_file(const std::filesystem::path& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw file_error(path.string(), "cannot read the file");
-  std::ostringstream text;
-  text << file.rdbuf();
-  if (file.bad()) throw file_error(path.string(), "cannot read the file");
-  return from_text(text.str(), path.string());
+  return from_text(read_input_file(path, "YAML file", kMaxScenarioBytes), path.string());
 }
 
 YamlSource YamlSource::from_text(std::string_view text, std::string file_name) {

@@ -5,6 +5,7 @@
 #include <string_view>
 
 #include "geometry/error.hpp"
+#include "io/files/input_file.hpp"
 #include "io/trajectory/trajectory_text.hpp"
 #include "sensor/cubic_spline.hpp"
 
@@ -36,6 +37,7 @@ std::vector<std::string_view> message_fields(std::string_view line, std::size_t 
 }  // namespace
 
 ArduPilotLog read_ardupilot_log(const std::string& path, const ArduPilotLogOptions& options) {
+  require_input_file(path, "ArduPilot log", kMaxTrajectoryBytes);
   std::ifstream file(path);
   if (!file) throw file_error(path, "cannot open the ArduPilot log");
   ArduPilotLog log;

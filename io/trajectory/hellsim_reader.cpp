@@ -6,6 +6,7 @@
 #include <string_view>
 
 #include "geometry/error.hpp"
+#include "io/files/input_file.hpp"
 #include "io/trajectory/trajectory_text.hpp"
 
 namespace owsim {
@@ -37,6 +38,7 @@ std::vector<NavRecord> read_hellsim(const std::string& path, const HellSimOption
     throw input_error(path,
                       "the HellSim tick weight (tick_s) must be a positive number of seconds");
   }
+  require_input_file(path, "HellSim trajectory file", kMaxTrajectoryBytes);
   std::ifstream file(path);
   if (!file) throw file_error(path, "cannot open the HellSim trajectory file");
   std::vector<NavRecord> records;

@@ -9,6 +9,7 @@
 #include <string_view>
 
 #include "geometry/error.hpp"
+#include "io/files/input_file.hpp"
 #include "io/files/little_endian.hpp"
 #include "sensor/trajectory.hpp"
 
@@ -35,6 +36,7 @@ enum Field : std::size_t {
 }  // namespace
 
 std::vector<NavRecord> read_sbet(const std::string& path) {
+  require_input_file(path, "SBET trajectory file", kMaxTrajectoryBytes);
   std::ifstream file(path, std::ios::binary | std::ios::ate);
   if (!file) throw file_error(path, "cannot open the SBET trajectory file");
   std::vector<unsigned char> bytes(static_cast<std::size_t>(file.tellg()));

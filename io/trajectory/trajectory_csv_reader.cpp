@@ -7,6 +7,7 @@
 #include <string_view>
 
 #include "geometry/error.hpp"
+#include "io/files/input_file.hpp"
 #include "io/trajectory/trajectory_text.hpp"
 
 namespace owsim {
@@ -56,6 +57,7 @@ std::array<std::size_t, kNeeded> column_positions(std::string_view header,
 }  // namespace
 
 std::vector<NavRecord> read_trajectory_csv(const std::string& path) {
+  require_input_file(path, "CSV trajectory file", kMaxTrajectoryBytes);
   std::ifstream file(path);
   if (!file) throw file_error(path, "cannot open the CSV trajectory file");
   std::vector<NavRecord> records;

@@ -111,7 +111,7 @@ class Module(unittest.TestCase):
         self.assertEqual(str(caught.exception), "frame 5 is out of range: the flight has frames 0..4")
         with self.assertRaises(OSError) as caught:
             owsim.Simulation("/nonexistent/scenario.yaml")
-        self.assertEqual(str(caught.exception), "/nonexistent/scenario.yaml: cannot read the file")
+        self.assertEqual(str(caught.exception), "/nonexistent/scenario.yaml: cannot read the YAML file: no such file")
         with self.assertRaises(ValueError) as caught:
             owsim.Simulation.from_yaml("name: x\norigin: {lat: 95, lon: 0, h: 0}\n", "bad.yaml")
         self.assertTrue(str(caught.exception).startswith("bad.yaml:2: origin"))
