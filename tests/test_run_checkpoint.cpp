@@ -335,6 +335,49 @@ TEST_F(FlightOutputsResume, KilledWhileFinishingKeepsWhatWasCommitted) {
   expect_same_outputs();
 }
 
+TEST_F(FlightOutputsResume, ARefusedResumeLeavesEveryFileAsItWas) {
+  // Issue 17: a resume refused for one damaged temporary had already cut back, and then removed,
+  // the others, so the run could never be resumed. Now every temporary is checked first, and a
+  // resumed temporary outlives a failure.
+  kill_after(3);
+  const fs::path las = dir_ / "interrupted" / "points.las.partial";
+  ASSERT_TRUE(fs::exists(las));
+  fs::resize_file(las, 10);  // shorter than the checkpoint says
+  const auto before = files_under(dir_ / "interrupted");
+  ASSERT_GE(before.size(), 6u);  // words, 3 point files, trajectory and the checkpoint, at least
+  const std::optional<RunCheckpoint> checkpoint =
+      read_run_checkpoint(run_checkpoint_path(dir_ / "interrupted"));
+  ASSERT_TRUE(checkpoint.has_value());
+  try {
+    FlightOutputs outputs(options("interrupted", true), scene_, scan_, local_frame_, &*checkpoint);
+    FAIL() << "resumed from a damaged points.las.partial";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("points.las.partial holds 10 bytes"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(files_under(dir_ / "interrupted"), before);
+}
+
+TEST_F(FlightOutputsResume, ACheckpointChangedInOneDigitIsRefused) {
+  // Still valid JSON with a plausible count, so only the checksum can tell: resuming it had given
+  // exit 0 and a spliced row in points.csv.
+  kill_after(3);
+  const fs::path path = run_checkpoint_path(dir_ / "interrupted");
+  std::string text = content(path);
+  const std::size_t at = text.find("\"frames_done\": 3");
+  ASSERT_NE(at, std::string::npos);
+  text[at + 15] = '2';
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << text;
+  try {
+    (void)read_run_checkpoint(path);
+    FAIL() << "read a checkpoint changed by hand";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), path.string() +
+                                         ": damaged checkpoint (its checksum does not match its "
+                                         "content); run without --resume to start over");
+  }
+}
+
 TEST_F(FlightOutputsResume, ACheckpointWithoutAnOutputsStateIsRefused) {
   kill_after(3);
   std::optional<RunCheckpoint> checkpoint =

@@ -52,19 +52,11 @@ AtomicOutputFile AtomicOutputFile::resume(std::filesystem::path final_path, std:
                                           AtomicOutputOptions options) {
   AtomicOutputFile file(Adopt{}, std::move(final_path), options);
   if (file.final_path_.empty()) throw Error("output file: empty path");
+  require_resumable(file.final_path_, bytes);
   errno = 0;
   file.file_ = std::fopen(file.partial_path_.c_str(), "r+b");
   if (file.file_ == nullptr) file.fail("cannot resume from " + file.partial_path_.string(), errno);
-  struct stat status {};
-  if (::fstat(::fileno(file.file_), &status) != 0) {
-    file.fail("cannot resume from " + file.partial_path_.string(), errno);
-  }
-  const auto size = static_cast<std::uint64_t>(status.st_size);
-  if (size < bytes) {
-    file.fail("cannot resume: " + file.partial_path_.string() + " holds " + std::to_string(size) +
-                  " bytes, the checkpoint " + std::to_string(bytes),
-              0);
-  }
+  file.resumed_ = true;
   if (::ftruncate(::fileno(file.file_), static_cast<off_t>(bytes)) != 0 ||
       ::fseeko(file.file_, 0, SEEK_END) != 0) {
     file.fail("cannot resume from " + file.partial_path_.string(), errno);
@@ -74,17 +66,40 @@ AtomicOutputFile AtomicOutputFile::resume(std::filesystem::path final_path, std:
   return file;
 }
 
+void AtomicOutputFile::require_resumable(const std::filesystem::path& final_path,
+                                         std::uint64_t bytes) {
+  const std::filesystem::path partial = partial_path_for(final_path);
+  std::error_code error;
+  const auto status = std::filesystem::symlink_status(partial, error);
+  if (error || !std::filesystem::is_regular_file(status)) {
+    throw file_error(final_path.string(),
+                     "cannot resume from " + partial.string() + ": " +
+                         (error ? error.message() : std::string("not a regular file")));
+  }
+  const std::uintmax_t size = std::filesystem::file_size(partial, error);
+  if (error) {
+    throw file_error(final_path.string(),
+                     "cannot resume from " + partial.string() + ": " + error.message());
+  }
+  if (size < bytes) {
+    throw file_error(final_path.string(), "cannot resume: " + partial.string() + " holds " +
+                                              std::to_string(size) + " bytes, the checkpoint " +
+                                              std::to_string(bytes));
+  }
+}
+
 AtomicOutputFile::AtomicOutputFile(AtomicOutputFile&& other) noexcept
     : final_path_(std::move(other.final_path_)),
       partial_path_(std::move(other.partial_path_)),
       options_(other.options_),
       file_(std::exchange(other.file_, nullptr)),
       bytes_written_(other.bytes_written_),
-      committed_(std::exchange(other.committed_, true)) {}  // the moved-from object owns nothing
+      committed_(std::exchange(other.committed_, true)),  // the moved-from object owns nothing
+      resumed_(other.resumed_) {}
 
 AtomicOutputFile::~AtomicOutputFile() {
   if (file_ != nullptr) std::fclose(file_);
-  if (!committed_) {
+  if (!committed_ && !resumed_) {
     std::error_code ignored;
     std::filesystem::remove(partial_path_, ignored);
   }

@@ -31,14 +31,19 @@ class AtomicOutputFile {
   // Reopens the `<final_path>.partial` an interrupted writer left, cut to its first `bytes` bytes,
   // for appending. Throws owsim::Error naming the final path if the temporary is missing or holds
   // fewer than `bytes` bytes.
+  // The temporary of a resumed file is never removed by the destructor: a run that fails after
+  // resuming leaves it for the next --resume, which cuts it back to the checkpoint again.
   [[nodiscard]] static AtomicOutputFile resume(std::filesystem::path final_path,
                                                std::uint64_t bytes,
                                                AtomicOutputOptions options = {});
+  // Throws what resume() would throw for a missing or short temporary, touching nothing: a
+  // resume checks every file this way before it cuts any of them back.
+  static void require_resumable(const std::filesystem::path& final_path, std::uint64_t bytes);
   AtomicOutputFile(AtomicOutputFile&& other) noexcept;
   AtomicOutputFile& operator=(AtomicOutputFile&&) = delete;
   AtomicOutputFile(const AtomicOutputFile&) = delete;
   AtomicOutputFile& operator=(const AtomicOutputFile&) = delete;
-  // Removes the temporary unless commit() succeeded. Never throws.
+  // Removes the temporary unless commit() succeeded or the file was resumed. Never throws.
   ~AtomicOutputFile();
 
   void write(const void* data, std::size_t size);
@@ -73,6 +78,7 @@ class AtomicOutputFile {
   std::FILE* file_ = nullptr;
   std::uint64_t bytes_written_ = 0;
   bool committed_ = false;
+  bool resumed_ = false;  // the temporary outlives a failure (resume())
 };
 
 }  // namespace owsim

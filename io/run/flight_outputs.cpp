@@ -198,6 +198,20 @@ void FlightOutputs::open_outputs(const Scene& scene, const RunCheckpoint* from) 
     }
     frames_done_ = from->frames_done;
     resumed_while_finishing_ = from->finishing;
+    // Every temporary is checked before any is cut back: a refused resume touches nothing.
+    const auto check = [&](bool wanted, const std::filesystem::path& final_path,
+                           const std::optional<WriterCheckpoint>& writer) {
+      if (wanted && writer && !committed(final_path)) {
+        AtomicOutputFile::require_resumable(final_path, writer->file_bytes);
+      }
+    };
+    const bool points = wants(OutputKind::points);
+    check(wants(OutputKind::d64), directory / WordSink::file_name(scan_), from->words);
+    check(points, directory / "points.csv", from->points_csv);
+    check(points, directory / "points.las",
+          from->points_las ? std::optional(from->points_las->file) : std::nullopt);
+    check(points, directory / "points.ply", from->points_ply);
+    check(wants(OutputKind::trajectory), directory / "trajectory.csv", from->trajectory);
   }
 
   if (wants(OutputKind::d64)) {

@@ -19,6 +19,7 @@ namespace {
 using nlohmann::json;
 
 constexpr std::string_view kFormat = "owsim run checkpoint";
+constexpr std::string_view kChecksumPrefix = "owsim run checkpoint fnv1a64 ";
 constexpr std::string_view kBase64 =
     "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
 
@@ -249,8 +250,13 @@ void write_run_checkpoint(const std::filesystem::path& path, const RunCheckpoint
   put_optional(out, "points_ply", checkpoint.points_ply, writer_json);
   put_optional(out, "trajectory", checkpoint.trajectory, writer_json);
   put_optional(out, "quicklook", checkpoint.quicklook, quicklook_json);
+  // The first line holds a checksum of everything after it, so a checkpoint changed by hand or
+  // by a damaged disk is refused, not resumed into spliced outputs.
+  const std::string body = out.dump(1) + "\n";
+  ContentHash hash;
+  hash.add(body.data(), body.size());
   AtomicOutputFile file(path, {.sync_on_commit = false});
-  file.write(out.dump(1) + "\n");
+  file.write(std::string(kChecksumPrefix) + hash.hex() + "\n" + body);
   file.commit();
 }
 
@@ -259,7 +265,17 @@ std::optional<RunCheckpoint> read_run_checkpoint(const std::filesystem::path& pa
   if (!std::filesystem::exists(path, error)) return std::nullopt;
   const std::string text = read_input_file(path, "run checkpoint", kMaxCheckpointBytes);
   try {
-    const json in = json::parse(text);
+    const std::size_t line_end = text.find('\n');
+    if (!text.starts_with(kChecksumPrefix) || line_end == std::string::npos) {
+      throw Error("no checksum line");
+    }
+    const std::string_view body = std::string_view(text).substr(line_end + 1);
+    ContentHash hash;
+    hash.add(body.data(), body.size());
+    if (text.substr(kChecksumPrefix.size(), line_end - kChecksumPrefix.size()) != hash.hex()) {
+      throw Error("its checksum does not match its content");
+    }
+    const json in = json::parse(body);
     if (in.at("format") != kFormat || in.at("version") != kRunCheckpointVersion) {
       throw Error("not a version " + std::to_string(kRunCheckpointVersion) +
                   " checkpoint of this owsim");

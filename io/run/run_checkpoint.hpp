@@ -11,7 +11,9 @@
 // version, contents of the scenario and the files it reads, seed, noise, frame count, outputs) and
 // nothing that does not (threads); a resume compares it key by key. Values round-trip exactly:
 // doubles as JSON numbers in their shortest round-trip form, the map mask run-length coded in
-// base64. Errors throw owsim::Error naming the file.
+// base64. The first line holds an FNV-1a 64 checksum of the JSON after it: a checkpoint changed by
+// a single byte is refused ("damaged checkpoint"), never resumed into spliced outputs. Errors throw
+// owsim::Error naming the file.
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -28,7 +30,7 @@
 namespace owsim {
 
 inline constexpr std::string_view kRunCheckpointFileName = ".owsim-resume.json";
-inline constexpr int kRunCheckpointVersion = 1;
+inline constexpr int kRunCheckpointVersion = 2;  // 2: a checksum line before the JSON
 
 struct RunCheckpoint {
   nlohmann::json run = nlohmann::json::object();  // the run that wrote it (see above)
