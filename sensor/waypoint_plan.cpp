@@ -179,9 +179,23 @@ double ramp(double time_s, double centre_s, double ramp_s) {
   return std::clamp((time_s - (centre_s - 0.5 * ramp_s)) / ramp_s, 0.0, 1.0);
 }
 
-double roll_deg_at(const std::vector<Segment>& path, double time_s, double roll_in_s) {
+// The bank at time_s: the sum of every turn's ramped bank. Only the turns whose roll-in or
+// roll-out window (at most roll_in_s/2 either side of their ends) holds time_s add anything other
+// than zero, so only those around path[current] (the segment flown at time_s) are visited, in
+// path order, which keeps the sum bit for bit that of visiting every turn (a route of thousands
+// of waypoints visited all of them for every sample: minutes for a few frames).
+double roll_deg_at(const std::vector<Segment>& path, std::size_t current, double time_s,
+                   double roll_in_s) {
+  const double half_s = 0.5 * roll_in_s;
+  std::size_t first = current, last = current;
+  while (first > 0 &&
+         path[first - 1].start_time_s + path[first - 1].duration_s + half_s >= time_s) {
+    --first;
+  }
+  while (last + 1 < path.size() && path[last + 1].start_time_s - half_s <= time_s) ++last;
   double roll = 0.0;
-  for (const Segment& segment : path) {
+  for (std::size_t i = first; i <= last; ++i) {
+    const Segment& segment = path[i];
     if (!segment.arc) continue;
     const double ramp_s = std::min(roll_in_s, segment.duration_s);
     const double entry = ramp(time_s, segment.start_time_s, ramp_s);
@@ -231,7 +245,7 @@ NavTrack waypoint_track(const WaypointPlan& plan) {
     }
     track.time_s.push_back(time_s);
     track.position_enu_m.push_back(position);
-    track.attitude.push_back({roll_deg_at(path, time_s, plan.roll_in_s),
+    track.attitude.push_back({roll_deg_at(path, current, time_s, plan.roll_in_s),
                               kDegPerRad * std::atan(segment.climb_per_m),
                               wrap_360_deg(kDegPerRad * heading_rad)});
   }
