@@ -8,6 +8,7 @@
 #include "cli/commands.hpp"
 #include "cli/option_checks.hpp"
 #include "cli/throughput_bench.hpp"
+#include "io/files/json_text.hpp"
 
 namespace owsim::cli {
 namespace {
@@ -95,7 +96,7 @@ void add_bench_command(CLI::App& app, CommandResult& /*result*/) {
     options->progress = !*quiet;
     const ThroughputReport report = measure_throughput(*options);
     if (*json) {
-      fmt::print("{}\n", to_json(report).dump(2));
+      fmt::print("{}\n", json_text(to_json(report), 2));
     } else {
       print_text(report);
     }

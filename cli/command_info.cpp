@@ -6,6 +6,7 @@
 
 #include "cli/commands.hpp"
 #include "geometry/error.hpp"
+#include "io/files/json_text.hpp"
 #include "io/recording/recording_check.hpp"
 
 namespace owsim::cli {
@@ -30,7 +31,7 @@ void run_info(const InfoOptions& options, CommandResult& result) {
   scan.model = *model;
   const RecordingReport report = check_recording(options.file, scan);
   if (options.json) {
-    std::cout << to_json(report).dump(2) << '\n';
+    std::cout << json_text(to_json(report), 2) << '\n';
   } else {
     std::cout << render_text(report);
   }

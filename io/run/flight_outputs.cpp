@@ -8,6 +8,7 @@
 
 #include "geometry/error.hpp"
 #include "io/files/atomic_output_file.hpp"
+#include "io/files/json_text.hpp"
 #include "io/images/png_image.hpp"
 #include "io/images/quicklook.hpp"
 #include "io/points/frame_points.hpp"
@@ -413,7 +414,7 @@ void FlightOutputs::finish(const nlohmann::json& run_facts) {
     summary.update(summary_.to_json());
     summary["pulses_per_frame"] = scan_.pulses_per_frame();
     AtomicOutputFile file(options_.directory / "summary.json");
-    file.write(summary.dump(2) + "\n");
+    file.write(json_text(summary, 2) + "\n");
     file.commit();
   }
   finished_ = true;

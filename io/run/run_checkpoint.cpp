@@ -12,6 +12,7 @@
 #include "geometry/error.hpp"
 #include "io/files/atomic_output_file.hpp"
 #include "io/files/input_file.hpp"
+#include "io/files/json_text.hpp"
 
 namespace owsim {
 namespace {
@@ -226,7 +227,7 @@ std::optional<State> optional_of(const json& in, const char* key, FromJson from_
 
 std::string shown(const json& value) {
   constexpr std::size_t kLongest = 40;
-  std::string text = value.dump();
+  std::string text = json_text(value);
   if (text.size() > kLongest) text = text.substr(0, kLongest) + "…";
   return text;
 }
@@ -252,7 +253,7 @@ void write_run_checkpoint(const std::filesystem::path& path, const RunCheckpoint
   put_optional(out, "quicklook", checkpoint.quicklook, quicklook_json);
   // The first line holds a checksum of everything after it, so a checkpoint changed by hand or
   // by a damaged disk is refused, not resumed into spliced outputs.
-  const std::string body = out.dump(1) + "\n";
+  const std::string body = json_text(out, 1) + "\n";
   ContentHash hash;
   hash.add(body.data(), body.size());
   AtomicOutputFile file(path, {.sync_on_commit = false});

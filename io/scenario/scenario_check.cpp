@@ -8,6 +8,7 @@
 #include "geometry/error.hpp"
 #include "geometry/forest.hpp"
 #include "geometry/span.hpp"
+#include "io/files/utf8_text.hpp"
 #include "io/scenario/value_ranges.hpp"
 #include "sensor/savitzky_golay.hpp"
 #include "sensor/scan_params_check.hpp"
@@ -129,6 +130,7 @@ void check_ranges(const Scenario& scenario) {
 }
 
 void check_name(const std::string& name) {
+  if (invalid_utf8_offset(name)) throw input_error("name", "not UTF-8 text");
   if (name.empty() || name == "." || name == ".." ||
       name.find_first_of("/\\") != std::string::npos) {
     throw input_error("name",
@@ -143,6 +145,7 @@ class IdCheck {
  public:
   void add(const std::string& id, const std::string& key) {
     if (id.empty()) throw input_error(key + ".id", "an object needs a non-empty id");
+    if (invalid_utf8_offset(id)) throw input_error(key + ".id", "not UTF-8 text");
     if (id.find('/') != std::string::npos) {
       throw input_error(key + ".id",
                         "'" + id + "': '/' is reserved for the ids owsim makes (\"<span>/<n>\")");

@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <iterator>
 #include <sstream>
 
 #include "io/files/input_file.hpp"
+#include "io/files/utf8_text.hpp"
 
 namespace owsim {
 namespace {
@@ -80,6 +82,15 @@ YamlSource YamlSource::from_file(const std::filesystem::path& path) {
 }
 
 YamlSource YamlSource::from_text(std::string_view text, std::string file_name) {
+  if (const auto bad = invalid_utf8_offset(text)) {
+    const auto line =
+        1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(*bad), '\n');
+    char byte[8];
+    std::snprintf(byte, sizeof byte, "0x%02X", static_cast<unsigned char>(text[*bad]));
+    throw input_error(file_name + ":" + std::to_string(line),
+                      "not UTF-8 text (byte " + std::string(byte) +
+                          "): owsim reads every text as UTF-8; save the file as UTF-8");
+  }
   YAML::Node root;
   try {
     root = YAML::Load(std::string(text));

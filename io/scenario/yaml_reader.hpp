@@ -8,7 +8,7 @@
 // with 1-based lines (yaml-cpp's marks are 0-based) and paths like scene.spans[1].conductor.
 // A mapping that repeats a key is an error (yaml-cpp would keep the first silently). Numbers are
 // parsed with std::from_chars (locale-independent) and must be finite; integers must be written
-// as integers and fit their range.
+// as integers and fit their range. The text must be UTF-8 ("<file>:<line>: not UTF-8 text …").
 #include <yaml-cpp/yaml.h>
 
 #include <cstdint>
