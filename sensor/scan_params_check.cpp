@@ -61,11 +61,15 @@ void validate(const ScanParams& p) {
     throw input_error("sensor.lines_per_frame",
                       "must be ≥ 1, got " + std::to_string(p.lines_per_frame));
   }
-  if (static_cast<long long>(p.fibers_per_line) * p.lines_per_frame >
-      std::numeric_limits<int>::max()) {
+  // A frame is simulated as one block in memory (a few hundred bytes a pulse on each thread):
+  // 2^20 pulses, 50 times the real sensor's 20,352, keep it within a few hundred MB.
+  constexpr long long kMaxPulsesPerFrame = 1 << 20;
+  if (static_cast<long long>(p.fibers_per_line) * p.lines_per_frame > kMaxPulsesPerFrame) {
     throw input_error("sensor.lines_per_frame",
-                      "fibers_per_line × lines_per_frame exceeds " +
-                          std::to_string(std::numeric_limits<int>::max()) + " pulses per frame");
+                      "fibers_per_line × lines_per_frame = " +
+                          std::to_string(static_cast<long long>(p.fibers_per_line) *
+                                         p.lines_per_frame) +
+                          " pulses per frame, more than " + std::to_string(kMaxPulsesPerFrame));
   }
   require_positive("sensor.sweep_deg", p.sweep_deg);
   require_non_negative("sensor.frame_jitter_deg", p.frame_jitter_deg);

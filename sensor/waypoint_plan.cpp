@@ -220,6 +220,15 @@ NavTrack waypoint_track(const WaypointPlan& plan) {
   validate_plan(plan);
   const std::vector<Segment> path = build_path(plan);
   const double total_s = path.back().start_time_s + path.back().duration_s;
+  // The track is sampled whole before the first frame: a route longer than a day (a crawl over
+  // thousands of km) would hold more samples than memory, so it is refused.
+  constexpr double kMaxRouteS = 86'400.0;
+  if (!(total_s <= kMaxRouteS)) {
+    throw input_error("trajectory.waypoints",
+                      "the route takes " + number_text(total_s) + " s at " +
+                          number_text(plan.speed_mps) + " m/s; owsim flies routes of up to " +
+                          number_text(kMaxRouteS) + " s");
+  }
   const auto samples =
       static_cast<std::size_t>(std::max(1.0, std::ceil(total_s * plan.sample_hz - 1e-9)));
 

@@ -14,6 +14,7 @@
 #include "io/scenario/scenario_check.hpp"
 #include "io/scenario/scenario_loader.hpp"
 #include "io/scenario/value_ranges.hpp"
+#include "io/trajectory/trajectory_loader.hpp"
 
 namespace owsim {
 namespace {
@@ -107,6 +108,28 @@ TEST(ValueRanges, HostileNumbersAreRefusedAtTheirLineAndKey) {
        "s.yaml:9: scene.poles[0].at.e: must be in [-200000, 200000] m, got 10000000"},
   };
   for (const Case& c : cases) EXPECT_EQ(error_of(c.yaml), c.want) << c.yaml;
+}
+
+TEST(ValueRanges, SizesThatOnlyTogetherRunAwayAreRefused) {
+  // Each within its range, together a frame of 10 M pulses or a route of 4.6 days whose samples
+  // are all held in memory.
+  const std::string frame =
+      error_of(std::string(kMinimal) + "sensor: {fibers_per_line: 1024, lines_per_frame: 10000}\n");
+  EXPECT_NE(frame.find("sensor.lines_per_frame: fibers_per_line × lines_per_frame = 10240000 "
+                       "pulses per frame, more than 1048576"),
+            std::string::npos)
+      << frame;
+  Scenario crawl = load_scenario_text(kMinimal, "s.yaml");
+  crawl.trajectory.speed_mps = 1.0;
+  crawl.trajectory.waypoints_enu_m = {{-199'000.0, 0.0, 100.0}, {199'000.0, 0.0, 100.0}};
+  try {
+    (void)load_trajectory(crawl, LocalFrame(crawl.origin));
+    FAIL() << "planned a route of 398 km at 1 m/s";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "s.yaml: trajectory.waypoints: the route takes 398000 s at 1 m/s; owsim flies "
+              "routes of up to 86400 s");
+  }
 }
 
 TEST(ValueRanges, AScenarioBuiltInCodeIsHeldToTheSameTable) {

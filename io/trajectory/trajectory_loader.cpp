@@ -41,19 +41,17 @@ Trajectory load_trajectory(const Scenario& scenario, const LocalFrame& frame) {
   options.magnetic_variation_deg = spec.magnetic_variation_deg;
   options.irs_noise = spec.irs_noise;
   options.seed = scenario.seed;
-  // A problem found after reading ("trajectory record 12: time …") names where the records came
-  // from: the file, or the scenario's waypoints.
-  const std::string source = spec.source == TrajectorySpec::Source::file
-                                 ? spec.file.string()
-                                 : scenario.path.string() + ": trajectory.waypoints";
-  const NavTrack track = load_nav_track(scenario, frame);
+  // A problem found after reading ("trajectory record 12: time …", a route too long) names where
+  // the records came from: the trajectory file, or the scenario file that holds the waypoints.
+  const std::string source =
+      spec.source == TrajectorySpec::Source::file ? spec.file.string() : scenario.path.string();
   try {
-    return Trajectory(track, frame, options);
+    return Trajectory(load_nav_track(scenario, frame), frame, options);
   } catch (const FileError&) {
     throw;
   } catch (const Error& error) {
     const std::string message = error.what();
-    if (message.starts_with(source)) throw;
+    if (source.empty() || message.starts_with(source)) throw;
     throw input_error(source, message);
   }
 }
