@@ -15,6 +15,7 @@
 #include "geometry/error.hpp"
 #include "io/scenario/scenario_loader.hpp"
 #include "io/scenario/scene_builder.hpp"
+#include "minimal_scenario.hpp"
 #include "python_oracle.hpp"
 #include "sensor/range_counter.hpp"
 
@@ -76,13 +77,7 @@ scene:
 )";
 
 // Six lines: name, origin, and the shortest trajectory. Cases append from line 7 on.
-constexpr const char* kMinimal = R"(name: m
-origin: {lat: 48.6881, lon: 10.8447, h: 450}
-trajectory:
-  waypoints:
-    speed_mps: 40
-    points: [{e: 0, n: 0, u: 100}, {e: 100, n: 0, u: 100}]
-)";
+constexpr const char* kMinimal = test::kMinimalScenario;
 
 const std::filesystem::path kPath = "/scenarios/s.yaml";  // never read: text is loaded in memory
 
@@ -675,9 +670,9 @@ TEST(ScenarioLoaderErrors, NonFiniteAndNegativeSizes) {
       to: {e: 100, n: 0}
       conductor: {diameter_mm: -20}
 )",
-               12, "scene.spans[0].conductor.diameter_mm",
-               "must be in [1, 200] mm, got -20");
-  expect_error(m + "  duration_s: -3\n", 7, "trajectory.duration_s", "must be in [0, 86400] s, got -3");
+               12, "scene.spans[0].conductor.diameter_mm", "must be in [1, 200] mm, got -20");
+  expect_error(m + "  duration_s: -3\n", 7, "trajectory.duration_s",
+               "must be in [0, 86400] s, got -3");
   expect_error(m + "  start_s: -1\n", 7, "trajectory.start_s", "must be in [0, 1e+10] s, got -1");
   expect_error(m + "    speed_mps: 50\n", 7, "trajectory.waypoints.speed_mps",
                "key 'speed_mps' given twice in trajectory.waypoints (first at line 5)");
@@ -731,7 +726,8 @@ TEST(ScenarioLoaderErrors, ImpossibleValues) {
   expect_error(m + "sensor:\n  alpha_table_deg: [1, 2]\n", 8, "sensor.alpha_table_deg",
                "holds 2 angles");
   expect_error(m + "sensor:\n  counter:\n    speed_of_light_mps: -1\n", 9,
-               "sensor.counter.speed_of_light_mps", "must be in [290000000, 300000000] m/s, got -1");
+               "sensor.counter.speed_of_light_mps",
+               "must be in [290000000, 300000000] m/s, got -1");
   expect_error(m + "sensor:\n  counter: {timeout_counts: 5000}\n", 8,
                "sensor.counter.timeout_counts", "must be an integer in [1, 4095], got 5000");
   expect_error(m + "sensor:\n  reference_counts: 4096\n", 8, "sensor.reference_counts",
@@ -877,7 +873,8 @@ TEST(ScenarioLoaderErrors, UnreadableFile) {
     (void)load_scenario("/nonexistent/owsim/s.yaml");
     ADD_FAILURE() << "accepted";
   } catch (const Error& error) {
-    EXPECT_STREQ(error.what(), "/nonexistent/owsim/s.yaml: cannot read the YAML file: no such file");
+    EXPECT_STREQ(error.what(),
+                 "/nonexistent/owsim/s.yaml: cannot read the YAML file: no such file");
   }
 }
 

@@ -11,6 +11,7 @@
 #include "io/files/utf8_text.hpp"
 #include "io/scenario/scenario_check.hpp"
 #include "io/scenario/scenario_loader.hpp"
+#include "minimal_scenario.hpp"
 
 namespace owsim {
 namespace {
@@ -29,13 +30,7 @@ TEST(Utf8Text, AcceptsEveryValidFormAndPointsAtTheFirstBadByte) {
   EXPECT_EQ(invalid_utf8_offset("\x80"), 0u);                        // a lone continuation
 }
 
-constexpr const char* kMinimal = R"(name: m
-origin: {lat: 48.6881, lon: 10.8447, h: 450}
-trajectory:
-  waypoints:
-    speed_mps: 40
-    points: [{e: 0, n: 0, u: 100}, {e: 100, n: 0, u: 100}]
-)";
+constexpr const char* kMinimal = test::kMinimalScenario;
 
 TEST(Utf8Text, ALatin1IdIsRefusedAtItsLine) {
   const std::string yaml = std::string(kMinimal) +

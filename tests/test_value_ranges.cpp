@@ -15,17 +15,12 @@
 #include "io/scenario/scenario_loader.hpp"
 #include "io/scenario/value_ranges.hpp"
 #include "io/trajectory/trajectory_loader.hpp"
+#include "minimal_scenario.hpp"
 
 namespace owsim {
 namespace {
 
-constexpr const char* kMinimal = R"(name: m
-origin: {lat: 48.6881, lon: 10.8447, h: 450}
-trajectory:
-  waypoints:
-    speed_mps: 40
-    points: [{e: 0, n: 0, u: 100}, {e: 100, n: 0, u: 100}]
-)";
+constexpr const char* kMinimal = test::kMinimalScenario;
 
 std::string error_of(const std::string& yaml) {
   try {
