@@ -253,12 +253,15 @@ void write_run_checkpoint(const std::filesystem::path& path, const RunCheckpoint
   put_optional(out, "quicklook", checkpoint.quicklook, quicklook_json);
   // The first line holds a checksum of everything after it, so a checkpoint changed by hand or
   // by a damaged disk is refused, not resumed into spliced outputs.
-  const std::string body = json_text(out, 1) + "\n";
+  AtomicOutputFile file(path, {.sync_on_commit = false});
+  file.write(checksummed_checkpoint_text(json_text(out, 1) + "\n"));
+  file.commit();
+}
+
+std::string checksummed_checkpoint_text(std::string_view body) {
   ContentHash hash;
   hash.add(body.data(), body.size());
-  AtomicOutputFile file(path, {.sync_on_commit = false});
-  file.write(std::string(kChecksumPrefix) + hash.hex() + "\n" + body);
-  file.commit();
+  return std::string(kChecksumPrefix) + hash.hex() + "\n" + std::string(body);
 }
 
 std::optional<RunCheckpoint> read_run_checkpoint(const std::filesystem::path& path) {

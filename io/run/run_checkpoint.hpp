@@ -49,6 +49,9 @@ struct RunCheckpoint {
 // `<directory>/.owsim-resume.json`
 [[nodiscard]] std::filesystem::path run_checkpoint_path(const std::filesystem::path& directory);
 
+// The checkpoint file's text for a JSON `body`: the checksum line, then the body.
+[[nodiscard]] std::string checksummed_checkpoint_text(std::string_view body);
+
 // Replaces the file at `path` atomically (no fsync: a checkpoint guards against a killed process,
 // not a lost machine).
 void write_run_checkpoint(const std::filesystem::path& path, const RunCheckpoint& checkpoint);
