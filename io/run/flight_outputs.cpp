@@ -199,6 +199,7 @@ void FlightOutputs::open_outputs(const Scene& scene, const RunCheckpoint* from) 
     }
     frames_done_ = from->frames_done;
     resumed_while_finishing_ = from->finishing;
+    checkpoint_on_disk_ = true;
     // Every temporary is checked before any is cut back: a refused resume touches nothing.
     const auto check = [&](bool wanted, const std::filesystem::path& final_path,
                            const std::optional<WriterCheckpoint>& writer) {
@@ -385,6 +386,7 @@ void FlightOutputs::add_frame(const FrameView& frame, const FrameEncoding& encod
 }
 
 void FlightOutputs::write_checkpoint(bool finishing) {
+  checkpoint_on_disk_ = true;
   RunCheckpoint checkpoint;
   checkpoint.run = options_.checkpoint_run;
   checkpoint.frames_done = frames_done_;
@@ -401,8 +403,11 @@ void FlightOutputs::write_checkpoint(bool finishing) {
 }
 
 void FlightOutputs::finish(const nlohmann::json& run_facts) {
-  // From here files appear under their final names; a resume must know they may have.
-  if (checkpointing() && !resumed_while_finishing_) write_checkpoint(true);
+  // From here files appear under their final names; a resume must know they may have. A run that
+  // never wrote a checkpoint (shorter than the interval) writes none now either: a resume finds
+  // none and starts from frame 0, which gives the same bytes, and a short run (a one-frame run of
+  // a thousand-member sweep) does not pay for serialising every object's state.
+  if (checkpointing() && checkpoint_on_disk_ && !resumed_while_finishing_) write_checkpoint(true);
   if (words_) words_->commit();
   if (points_csv_) points_csv_->finish();
   if (points_las_) points_las_->finish();

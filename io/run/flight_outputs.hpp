@@ -125,6 +125,7 @@ class FlightOutputs {
   FrameEncoding encoding_;  // add_frame(frame, frame_start)'s, reused per frame
   std::int64_t frames_done_ = 0;
   bool resumed_while_finishing_ = false;  // the checkpoint already describes the finished frames
+  bool checkpoint_on_disk_ = false;        // this run wrote one, or resumed from one
   bool finished_ = false;
   std::filesystem::path checkpoint_path_;
   Clock::time_point last_checkpoint_;
