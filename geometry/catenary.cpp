@@ -6,6 +6,7 @@
 #include <string>
 
 #include "geometry/error.hpp"
+#include "geometry/number_text.hpp"
 
 namespace owsim {
 namespace {
@@ -16,12 +17,6 @@ constexpr double kMinParameterRatio = 1e-12;  // a ≥ 1e-12·max(h1, h2)
 constexpr double kMaxParameterRatio = 1e12;   // a ≤ 1e12·D
 constexpr double kSampleSafety = 0.9;         // Δx = 0.9·√(8·a·e)
 constexpr double kMaxSamples = 1e7;
-
-std::string number(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.9g", value);
-  return text;
-}
 
 // acosh(1 + u) for u ≥ 0, accurate for small u.
 double acosh_one_plus(double u) { return std::log1p(u + std::sqrt(u * (2.0 + u))); }
@@ -39,20 +34,23 @@ double vertex_to_support_slope(double a, double h) {
 void check_profile(const CatenaryProfile& p) {
   if (!(std::isfinite(p.span_m) && std::isfinite(p.support_1_m) && std::isfinite(p.support_2_m) &&
         std::isfinite(p.lowest_m))) {
-    throw input_error("catenary", "D, H1, H2 and S must be finite (got D = " + number(p.span_m) +
-                                      ", H1 = " + number(p.support_1_m) + ", H2 = " +
-                                      number(p.support_2_m) + ", S = " + number(p.lowest_m) + ")");
+    throw input_error(
+        "catenary", "D, H1, H2 and S must be finite (got D = " + number_text(p.span_m) + ", H1 = " +
+                        number_text(p.support_1_m) + ", H2 = " + number_text(p.support_2_m) +
+                        ", S = " + number_text(p.lowest_m) + ")");
   }
   if (!(p.span_m > 0.0)) {
-    throw input_error("catenary", "the support distance D must be > 0, got " + number(p.span_m));
+    throw input_error("catenary",
+                      "the support distance D must be > 0, got " + number_text(p.span_m));
   }
   if (p.lowest_m > p.support_1_m || p.lowest_m > p.support_2_m) {
-    throw input_error("catenary", "the lowest point S = " + number(p.lowest_m) +
-                                      " m is above a support (H1 = " + number(p.support_1_m) +
-                                      " m, H2 = " + number(p.support_2_m) + " m)");
+    throw input_error("catenary", "the lowest point S = " + number_text(p.lowest_m) +
+                                      " m is above a support (H1 = " + number_text(p.support_1_m) +
+                                      " m, H2 = " + number_text(p.support_2_m) + " m)");
   }
   if (p.lowest_m == p.support_1_m && p.lowest_m == p.support_2_m) {
-    throw input_error("catenary", "the lowest point S equals both supports (" + number(p.lowest_m) +
+    throw input_error("catenary", "the lowest point S equals both supports (" +
+                                      number_text(p.lowest_m) +
                                       " m): a wire without sag cannot be reached");
   }
 }
@@ -70,8 +68,8 @@ Catenary Catenary::solve(const CatenaryProfile& profile) {
 
   double lo = kMinParameterRatio * std::max(h1, h2);
   if (!(residual(lo) < 0.0)) {
-    throw input_error("catenary", "the supports are too close (D = " + number(span) +
-                                      " m) for a sag of " + number(std::max(h1, h2)) +
+    throw input_error("catenary", "the supports are too close (D = " + number_text(span) +
+                                      " m) for a sag of " + number_text(std::max(h1, h2)) +
                                       " m: the wire would hang vertically");
   }
   double hi = std::max(span, std::max(h1, h2));
@@ -79,8 +77,8 @@ Catenary Catenary::solve(const CatenaryProfile& profile) {
     lo = hi;
     hi *= 2.0;
     if (hi > kMaxParameterRatio * span) {
-      throw input_error("catenary", "the sag " + number(std::max(h1, h2)) +
-                                        " m is too small for D = " + number(span) +
+      throw input_error("catenary", "the sag " + number_text(std::max(h1, h2)) +
+                                        " m is too small for D = " + number_text(span) +
                                         " m: the wire would have to lie flat");
     }
   }
@@ -119,13 +117,13 @@ double Catenary::length_m() const {
 std::vector<double> Catenary::sample_x(double max_chord_error_m) const {
   if (!(std::isfinite(max_chord_error_m) && max_chord_error_m > 0.0)) {
     throw input_error("catenary", "the chord error bound must be a finite number > 0, got " +
-                                      number(max_chord_error_m));
+                                      number_text(max_chord_error_m));
   }
   const double step = kSampleSafety * std::sqrt(8.0 * a_ * max_chord_error_m);
   const double segments = std::max(1.0, std::ceil(profile_.span_m / step));
   if (segments > kMaxSamples) {
-    throw input_error("catenary", "sampling to " + number(max_chord_error_m) + " m would need " +
-                                      number(segments) + " points");
+    throw input_error("catenary", "sampling to " + number_text(max_chord_error_m) +
+                                      " m would need " + number_text(segments) + " points");
   }
   const auto n = static_cast<std::size_t>(segments);
   std::vector<double> xs(n + 1);

@@ -6,15 +6,10 @@
 
 #include "geometry/error.hpp"
 #include "geometry/keyed_random.hpp"
+#include "geometry/number_text.hpp"
 
 namespace owsim {
 namespace {
-
-std::string number(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.9g", value);
-  return text;
-}
 
 std::string key(std::string_view where, std::string_view name) {
   if (where.empty()) return std::string(name);
@@ -25,10 +20,10 @@ void check_range(std::string_view where, std::string_view name, double lo, doubl
                  bool positive) {
   if (!(std::isfinite(lo) && std::isfinite(hi) && lo <= hi)) {
     throw input_error(key(where, name), "must be a finite range [min, max] with min ≤ max, got [" +
-                                            number(lo) + ", " + number(hi) + "]");
+                                            number_text(lo) + ", " + number_text(hi) + "]");
   }
   if (positive && !(lo > 0.0)) {
-    throw input_error(key(where, name), "must be > 0, got a minimum of " + number(lo));
+    throw input_error(key(where, name), "must be > 0, got a minimum of " + number_text(lo));
   }
 }
 
@@ -50,7 +45,7 @@ std::vector<Cylinder> generate_forest(const ForestSpec& spec, std::uint64_t seed
   check_range(where, "diameter_m", spec.diameter_min_m, spec.diameter_max_m, true);
   if (!(std::isfinite(spec.reflectivity) && spec.reflectivity >= 0.0 && spec.reflectivity <= 1.0)) {
     throw input_error(key(where, "reflectivity"),
-                      "must be between 0 and 1, got " + number(spec.reflectivity));
+                      "must be between 0 and 1, got " + number_text(spec.reflectivity));
   }
 
   std::vector<Cylinder> trees;

@@ -6,29 +6,21 @@
 #include <vector>
 
 #include "geometry/error.hpp"
+#include "geometry/number_text.hpp"
 
 namespace owsim {
 
-namespace {
-
-std::string number_text(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.10g", value);
-  return text;
-}
-
-}  // namespace
-
 void validate_geodetic(const Geodetic& point, std::string_view where) {
   if (!(point.lat_deg >= -90.0 && point.lat_deg <= 90.0)) {
-    throw input_error(where, "latitude " + number_text(point.lat_deg) + "° is outside [-90°, 90°]");
+    throw input_error(where,
+                      "latitude " + number_text(point.lat_deg, 10) + "° is outside [-90°, 90°]");
   }
   if (!(point.lon_deg >= -540.0 && point.lon_deg < 540.0)) {
     throw input_error(where,
-                      "longitude " + number_text(point.lon_deg) + "° is outside [-540°, 540°)");
+                      "longitude " + number_text(point.lon_deg, 10) + "° is outside [-540°, 540°)");
   }
   if (!std::isfinite(point.h_m)) {
-    throw input_error(where, "height " + number_text(point.h_m) + " m is not finite");
+    throw input_error(where, "height " + number_text(point.h_m, 10) + " m is not finite");
   }
 }
 

@@ -6,17 +6,12 @@
 #include <string>
 
 #include "geometry/error.hpp"
+#include "geometry/number_text.hpp"
 
 namespace owsim {
 namespace {
 
 constexpr double kEdgeMarginCells = 1e-9;
-
-std::string number(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.10g", value);
-  return text;
-}
 
 // Cell index and fraction of a coordinate measured in cells from the first sample, clamped to
 // the lattice: index ∈ [0, count − 2], fraction ∈ [0, 1].
@@ -34,7 +29,8 @@ void HeightGrid::validate(std::string_view where) const {
                                  std::to_string(ncols) + " × " + std::to_string(nrows));
   }
   if (!(std::isfinite(cellsize_m) && cellsize_m > 0.0)) {
-    throw input_error(where, "cellsize must be a finite number > 0, got " + number(cellsize_m));
+    throw input_error(where,
+                      "cellsize must be a finite number > 0, got " + number_text(cellsize_m, 10));
   }
   if (!(std::isfinite(x_west_m) && std::isfinite(y_south_m))) {
     throw input_error(where, "the lower-left coordinates must be finite");
@@ -58,9 +54,10 @@ double HeightGrid::height_at(double e_m, double n_m) const {
   const double margin = kEdgeMarginCells;
   if (!(col_cells >= -margin && col_cells <= ncols - 1 + margin && row_cells >= -margin &&
         row_cells <= nrows - 1 + margin)) {
-    throw Error("terrain grid: point (e " + number(e_m) + ", n " + number(n_m) +
-                ") lies outside the grid, which covers e " + number(x_west_m) + ".." +
-                number(x_east_m()) + ", n " + number(y_south_m) + ".." + number(y_north_m()));
+    throw Error("terrain grid: point (e " + number_text(e_m, 10) + ", n " + number_text(n_m, 10) +
+                ") lies outside the grid, which covers e " + number_text(x_west_m, 10) + ".." +
+                number_text(x_east_m(), 10) + ", n " + number_text(y_south_m, 10) + ".." +
+                number_text(y_north_m(), 10));
   }
   int col = 0, south_row = 0;
   double fx = 0.0, fy = 0.0;
@@ -75,8 +72,8 @@ double HeightGrid::height_at(double e_m, double n_m) const {
     if (corner_weights[k] == 0.0) continue;
     const double value = sample(corner_rows[k], corner_cols[k]);
     if (is_nodata(value)) {
-      throw Error("terrain grid: no height at (e " + number(e_m) + ", n " + number(n_m) +
-                  "): a neighbouring sample is NODATA");
+      throw Error("terrain grid: no height at (e " + number_text(e_m, 10) + ", n " +
+                  number_text(n_m, 10) + "): a neighbouring sample is NODATA");
     }
     height += corner_weights[k] * value;
   }

@@ -6,15 +6,10 @@
 
 #include "geometry/catenary.hpp"
 #include "geometry/error.hpp"
+#include "geometry/number_text.hpp"
 
 namespace owsim {
 namespace {
-
-std::string number(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.9g", value);
-  return text;
-}
 
 class SpanChecker {
  public:
@@ -33,13 +28,13 @@ class SpanChecker {
   void positive(std::string_view name, double value, double shown_scale = 1.0,
                 std::string_view unit = "m") const {
     if (!(std::isfinite(value) && value > 0.0)) {
-      fail(name, "must be a finite number > 0, got " + number(value * shown_scale) + " " +
+      fail(name, "must be a finite number > 0, got " + number_text(value * shown_scale) + " " +
                      std::string(unit));
     }
   }
   void fraction(std::string_view name, double value) const {
     if (!(std::isfinite(value) && value >= 0.0 && value <= 1.0)) {
-      fail(name, "must be between 0 and 1, got " + number(value));
+      fail(name, "must be between 0 and 1, got " + number_text(value));
     }
   }
 
@@ -58,12 +53,12 @@ void check_span(const SpanSpec& spec, const SpanChecker& check) {
   check.positive("support_heights_m", spec.support_height_2_m);
   const double s = spec.lowest_point_m;
   if (!(std::isfinite(s) && s >= 0.0)) {
-    check.fail("lowest_point_m", "must be a finite number ≥ 0, got " + number(s) + " m");
+    check.fail("lowest_point_m", "must be a finite number ≥ 0, got " + number_text(s) + " m");
   }
   if (s > spec.support_height_1_m || s > spec.support_height_2_m) {
-    check.fail("lowest_point_m", number(s) + " m is above a support (support_heights_m " +
-                                     number(spec.support_height_1_m) + ", " +
-                                     number(spec.support_height_2_m) + ")");
+    check.fail("lowest_point_m", number_text(s) + " m is above a support (support_heights_m " +
+                                     number_text(spec.support_height_1_m) + ", " +
+                                     number_text(spec.support_height_2_m) + ")");
   }
   if (spec.offsets.empty()) check.fail("layout", "a span needs at least one conductor");
   for (std::size_t i = 0; i < spec.offsets.size(); ++i) {
@@ -73,9 +68,10 @@ void check_span(const SpanSpec& spec, const SpanChecker& check) {
     }
     if (s + offset.vertical_m < 0.0) {
       check.fail("lowest_point_m",
-                 "conductor " + std::to_string(i + 1) + " hangs " + number(-offset.vertical_m) +
+                 "conductor " + std::to_string(i + 1) + " hangs " +
+                     number_text(-offset.vertical_m) +
                      " m below the support height, so its lowest point would be " +
-                     number(s + offset.vertical_m) + " m, under the terrain");
+                     number_text(s + offset.vertical_m) + " m, under the terrain");
     }
   }
   check.positive("conductor.diameter_mm", spec.conductor_diameter_m, 1000.0, "mm");

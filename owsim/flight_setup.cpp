@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "geometry/error.hpp"
+#include "geometry/number_text.hpp"
 #include "io/scenario/scene_builder.hpp"
 #include "io/scenario/value_ranges.hpp"
 #include "io/trajectory/trajectory_loader.hpp"
@@ -19,20 +20,14 @@ constexpr int kMaxThreads = 4096;
 // The longest run, in frames (about 38 days of sensor time): counts stay far from overflow.
 constexpr std::int64_t kMaxFrames = 10'000'000;
 
-std::string metres_text(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.6g", value);
-  return text;
-}
-
 // Throws "<where>: lies … m from the scenario origin; …" unless every coordinate of `enu_m` is
 // within kMaxOffsetFromOriginM: the ray tracer works in floats relative to the origin.
 void require_near_origin(const Eigen::Vector3d& enu_m, const std::string& where) {
   const double offset = enu_m.cwiseAbs().maxCoeff();
   if (offset <= kMaxOffsetFromOriginM) return;
-  throw input_error(where, "lies " + metres_text(offset) +
+  throw input_error(where, "lies " + number_text(offset, 6) +
                                " m from the scenario origin; owsim simulates within " +
-                               metres_text(kMaxOffsetFromOriginM) +
+                               number_text(kMaxOffsetFromOriginM, 6) +
                                " m of it (the ray tracer's float coordinates keep 16 mm there): "
                                "put the origin near the flight");
 }
@@ -139,7 +134,7 @@ Eigen::AlignedBox2d flight_extent(const Trajectory& trajectory, const Scenario& 
         pulse_time_s(scan, std::min(f, frames - 1), f == frames ? scan.pulses_per_frame() - 1 : 0);
     const Pose pose = trajectory.pose_at(t_s);
     require_near_origin(pose.position_enu_m,
-                        source + ": the flight at t = " + metres_text(t_s) + " s");
+                        source + ": the flight at t = " + number_text(t_s, 6) + " s");
     box.extend(pose.position_enu_m.head<2>());
   }
   return box;

@@ -6,18 +6,13 @@
 #include <string>
 
 #include "geometry/error.hpp"
+#include "geometry/number_text.hpp"
 
 namespace owsim {
 namespace {
 
 constexpr double kKoschmiederConstant = 3.912;   // ln(1 / 0.02)
 constexpr double kVisibilityReferenceUm = 0.55;  // the visibility is defined at 550 nm
-
-std::string number(double value) {
-  char text[32];
-  const auto result = std::to_chars(text, text + sizeof text, value, std::chars_format::general, 9);
-  return std::string(text, result.ptr);
-}
 
 }  // namespace
 
@@ -46,16 +41,16 @@ double two_way_transmission(const Atmosphere& atmosphere, double range_m) {
 void validate(const Atmosphere& atmosphere) {
   if (!(atmosphere.transmission > 0.0 && atmosphere.transmission <= 1.0)) {
     throw input_error("atmosphere.transmission", "must be a two-way fraction in (0, 1], got " +
-                                                     number(atmosphere.transmission));
+                                                     number_text(atmosphere.transmission));
   }
   if (atmosphere.visibility_km &&
       !(std::isfinite(*atmosphere.visibility_km) && *atmosphere.visibility_km > 0.0)) {
     throw input_error("atmosphere.visibility_km",
-                      "must be a finite number > 0, got " + number(*atmosphere.visibility_km));
+                      "must be a finite number > 0, got " + number_text(*atmosphere.visibility_km));
   }
   if (!(std::isfinite(atmosphere.wavelength_um) && atmosphere.wavelength_um > 0.0)) {
     throw input_error("atmosphere.wavelength_um",
-                      "must be a finite number > 0, got " + number(atmosphere.wavelength_um));
+                      "must be a finite number > 0, got " + number_text(atmosphere.wavelength_um));
   }
 }
 

@@ -9,27 +9,22 @@
 
 #include "geometry/error.hpp"
 #include "geometry/keyed_random.hpp"
+#include "geometry/number_text.hpp"
 #include "sensor/footprint.hpp"
 #include "sensor/return_energy.hpp"
 
 namespace owsim {
 namespace {
 
-std::string number(double value) {
-  char text[32];
-  const auto result = std::to_chars(text, text + sizeof text, value, std::chars_format::general, 9);
-  return std::string(text, result.ptr);
-}
-
 void require_non_negative(std::string_view key, double value) {
   if (!(std::isfinite(value) && value >= 0.0)) {
-    throw input_error(key, "must be a finite number ≥ 0, got " + number(value));
+    throw input_error(key, "must be a finite number ≥ 0, got " + number_text(value));
   }
 }
 
 void require_positive(std::string_view key, double value) {
   if (!(std::isfinite(value) && value > 0.0)) {
-    throw input_error(key, "must be a finite number > 0, got " + number(value));
+    throw input_error(key, "must be a finite number > 0, got " + number_text(value));
   }
 }
 
@@ -57,17 +52,17 @@ void validate(const ReceiverParams& p) {
   if (!(std::isfinite(p.beam.divergence_mrad) && p.beam.divergence_mrad >= 0.0 &&
         p.beam.divergence_mrad < 1000.0)) {
     throw input_error("sensor.divergence_mrad", "must be a full angle in [0, 1000) mrad, got " +
-                                                    number(p.beam.divergence_mrad));
+                                                    number_text(p.beam.divergence_mrad));
   }
   require_non_negative("sensor.beam_exit_radius_m", p.beam.exit_radius_m);
   if (!(p.threshold >= 0.0 && p.threshold <= 1.0)) {
     throw input_error("sensor.threshold",
-                      "must be an energy ratio in [0, 1], got " + number(p.threshold));
+                      "must be an energy ratio in [0, 1], got " + number_text(p.threshold));
   }
   if (!std::isfinite(p.range_noise_sigma_m)) {
     throw input_error("sensor.range_noise_sigma_m",
                       "must be a finite number (0 disables, negative = Δ/√2), got " +
-                          number(p.range_noise_sigma_m));
+                          number_text(p.range_noise_sigma_m));
   }
   require_non_negative("sensor.min_return_separation_m", p.min_return_separation_m);
   validate(p.atmosphere);

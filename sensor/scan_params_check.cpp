@@ -7,26 +7,21 @@
 #include <string_view>
 
 #include "geometry/error.hpp"
+#include "geometry/number_text.hpp"
 #include "sensor/motor_encoder.hpp"
 
 namespace owsim {
 namespace {
 
-std::string number(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.9g", value);
-  return text;
-}
-
 void require_positive(std::string_view key, double value) {
   if (!(std::isfinite(value) && value > 0.0)) {
-    throw input_error(key, "must be a finite number > 0, got " + number(value));
+    throw input_error(key, "must be a finite number > 0, got " + number_text(value));
   }
 }
 
 void require_non_negative(std::string_view key, double value) {
   if (!(std::isfinite(value) && value >= 0.0)) {
-    throw input_error(key, "must be a finite number ≥ 0, got " + number(value));
+    throw input_error(key, "must be a finite number ≥ 0, got " + number_text(value));
   }
 }
 
@@ -43,7 +38,7 @@ void check_alpha_table(const ScanParams& p) {
     const double alpha = p.alpha_table_deg[i];
     if (!(std::isfinite(alpha) && std::abs(alpha) <= 90.0)) {
       throw input_error("sensor.alpha_table_deg", "fiber " + std::to_string(i + 1) + " has α " +
-                                                      number(alpha) + "°, outside −90°..90°");
+                                                      number_text(alpha) + "°, outside −90°..90°");
     }
   }
 }
@@ -65,19 +60,19 @@ void validate(const ScanParams& p) {
   // 2^20 pulses, 50 times the real sensor's 20,352, keep it within a few hundred MB.
   constexpr long long kMaxPulsesPerFrame = 1 << 20;
   if (static_cast<long long>(p.fibers_per_line) * p.lines_per_frame > kMaxPulsesPerFrame) {
-    throw input_error("sensor.lines_per_frame",
-                      "fibers_per_line × lines_per_frame = " +
-                          std::to_string(static_cast<long long>(p.fibers_per_line) *
-                                         p.lines_per_frame) +
-                          " pulses per frame, more than " + std::to_string(kMaxPulsesPerFrame));
+    throw input_error(
+        "sensor.lines_per_frame",
+        "fibers_per_line × lines_per_frame = " +
+            std::to_string(static_cast<long long>(p.fibers_per_line) * p.lines_per_frame) +
+            " pulses per frame, more than " + std::to_string(kMaxPulsesPerFrame));
   }
   require_positive("sensor.sweep_deg", p.sweep_deg);
   require_non_negative("sensor.frame_jitter_deg", p.frame_jitter_deg);
   if (0.5 * p.sweep_deg + p.frame_jitter_deg > kMirrorBetaLimitDeg) {
-    throw input_error("sensor.sweep_deg", "a sweep of " + number(p.sweep_deg) + "° with ±" +
-                                              number(p.frame_jitter_deg) +
+    throw input_error("sensor.sweep_deg", "a sweep of " + number_text(p.sweep_deg) + "° with ±" +
+                                              number_text(p.frame_jitter_deg) +
                                               "° jitter leaves the mirror's ±" +
-                                              number(kMirrorBetaLimitDeg) + "°");
+                                              number_text(kMirrorBetaLimitDeg) + "°");
   }
   require_non_negative("sensor.sawtooth_deg", p.sawtooth_deg);
   require_non_negative("sensor.look_into_turn_s", p.look_into_turn_s);
@@ -85,7 +80,7 @@ void validate(const ScanParams& p) {
   check_alpha_table(p);
   require_non_negative("sensor.hellas_mirror_angle_factor_deg", p.hellas_mirror_angle_factor_deg);
   if (!std::isfinite(p.start_s)) {
-    throw input_error("sensor.start_s", "must be a finite number, got " + number(p.start_s));
+    throw input_error("sensor.start_s", "must be a finite number, got " + number_text(p.start_s));
   }
   if (p.reference_counts > kCounterMax) {
     throw input_error("sensor.reference_counts", "must fit the 12-bit counter (≤ 4095), got " +

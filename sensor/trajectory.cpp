@@ -5,21 +5,16 @@
 #include <string>
 
 #include "geometry/error.hpp"
+#include "geometry/number_text.hpp"
 
 namespace owsim {
 namespace {
-
-std::string number_text(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.10g", value);
-  return text;
-}
 
 std::string record_name(std::size_t index) { return "trajectory record " + std::to_string(index); }
 
 void require_finite(double value, std::size_t index, const char* what) {
   if (!std::isfinite(value)) {
-    throw input_error(record_name(index), std::string(what) + " is " + number_text(value));
+    throw input_error(record_name(index), std::string(what) + " is " + number_text(value, 10));
   }
 }
 
@@ -40,9 +35,9 @@ void validate_track(const NavTrack& track) {
     require_finite(track.attitude[i].pitch_deg, i, "pitch");
     require_finite(track.attitude[i].heading_deg, i, "heading");
     if (i > 0 && !(track.time_s[i] > track.time_s[i - 1])) {
-      throw input_error(record_name(i), "time " + number_text(track.time_s[i]) +
+      throw input_error(record_name(i), "time " + number_text(track.time_s[i], 10) +
                                             " s is not after the previous record's " +
-                                            number_text(track.time_s[i - 1]) + " s");
+                                            number_text(track.time_s[i - 1], 10) + " s");
     }
   }
 }

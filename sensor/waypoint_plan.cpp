@@ -7,18 +7,13 @@
 #include <string>
 
 #include "geometry/error.hpp"
+#include "geometry/number_text.hpp"
 #include "sensor/trajectory.hpp"
 
 namespace owsim {
 namespace {
 
 constexpr double kDegPerRad = 180.0 / std::numbers::pi;
-
-std::string number_text(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.6g", value);
-  return text;
-}
 
 std::string point_name(std::size_t index) {
   return "trajectory.waypoints.points[" + std::to_string(index) + "]";
@@ -66,17 +61,18 @@ Segment make_straight(const Eigen::Vector3d& from, const Eigen::Vector3d& to, do
 void validate_plan(const WaypointPlan& plan) {
   const std::string where = "trajectory.waypoints";
   if (!(std::isfinite(plan.speed_mps) && plan.speed_mps > 0)) {
-    throw input_error(where, "speed " + number_text(plan.speed_mps) + " m/s must be positive");
+    throw input_error(where, "speed " + number_text(plan.speed_mps, 6) + " m/s must be positive");
   }
   if (!(plan.max_bank_deg > 0 && plan.max_bank_deg < 90)) {
-    throw input_error(
-        where, "maximum bank " + number_text(plan.max_bank_deg) + "° must lie between 0° and 90°");
+    throw input_error(where, "maximum bank " + number_text(plan.max_bank_deg, 6) +
+                                 "° must lie between 0° and 90°");
   }
   if (!(std::isfinite(plan.sample_hz) && plan.sample_hz > 0)) {
-    throw input_error(where, "sample rate " + number_text(plan.sample_hz) + " Hz must be positive");
+    throw input_error(where,
+                      "sample rate " + number_text(plan.sample_hz, 6) + " Hz must be positive");
   }
   if (!(std::isfinite(plan.roll_in_s) && plan.roll_in_s >= 0)) {
-    throw input_error(where, "roll-in time " + number_text(plan.roll_in_s) + " s must be ≥ 0");
+    throw input_error(where, "roll-in time " + number_text(plan.roll_in_s, 6) + " s must be ≥ 0");
   }
   if (plan.points_enu_m.size() < 2) {
     throw input_error(where,
@@ -119,12 +115,12 @@ std::vector<Segment> build_path(const WaypointPlan& plan) {
       if (needed_m > legs[leg].horizontal_length_m * (1.0 + 1e-12)) {
         throw input_error(
             point_name(j),
-            "the " + number_text(std::abs(turn_rad[j]) * kDegPerRad) + "° turn at radius " +
-                number_text(radius_m) + " m (speed " + number_text(plan.speed_mps) + " m/s, bank " +
-                number_text(plan.max_bank_deg) + "°) needs " + number_text(needed_m) +
-                " m of the leg from point " + std::to_string(leg) + " to point " +
-                std::to_string(leg + 1) + ", which is " +
-                number_text(legs[leg].horizontal_length_m) + " m long: the corner is too tight");
+            "the " + number_text(std::abs(turn_rad[j]) * kDegPerRad, 6) + "° turn at radius " +
+                number_text(radius_m, 6) + " m (speed " + number_text(plan.speed_mps, 6) +
+                " m/s, bank " + number_text(plan.max_bank_deg, 6) + "°) needs " +
+                number_text(needed_m, 6) + " m of the leg from point " + std::to_string(leg) +
+                " to point " + std::to_string(leg + 1) + ", which is " +
+                number_text(legs[leg].horizontal_length_m, 6) + " m long: the corner is too tight");
       }
     };
     check_leg(j - 1, tangent_m[j - 1] + tangent_m[j]);
@@ -224,10 +220,10 @@ NavTrack waypoint_track(const WaypointPlan& plan) {
   // thousands of km) would hold more samples than memory, so it is refused.
   constexpr double kMaxRouteS = 86'400.0;
   if (!(total_s <= kMaxRouteS)) {
-    throw input_error("trajectory.waypoints",
-                      "the route takes " + number_text(total_s) + " s at " +
-                          number_text(plan.speed_mps) + " m/s; owsim flies routes of up to " +
-                          number_text(kMaxRouteS) + " s");
+    throw input_error("trajectory.waypoints", "the route takes " + number_text(total_s, 6) +
+                                                  " s at " + number_text(plan.speed_mps, 6) +
+                                                  " m/s; owsim flies routes of up to " +
+                                                  number_text(kMaxRouteS, 6) + " s");
   }
   const auto samples =
       static_cast<std::size_t>(std::max(1.0, std::ceil(total_s * plan.sample_hz - 1e-9)));

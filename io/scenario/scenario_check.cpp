@@ -7,6 +7,7 @@
 
 #include "geometry/error.hpp"
 #include "geometry/forest.hpp"
+#include "geometry/number_text.hpp"
 #include "geometry/span.hpp"
 #include "io/files/utf8_text.hpp"
 #include "io/scenario/value_ranges.hpp"
@@ -15,12 +16,6 @@
 
 namespace owsim {
 namespace {
-
-std::string number_text(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.9g", value);
-  return text;
-}
 
 std::string indexed(std::string_view list, std::size_t index) {
   return std::string(list) + "[" + std::to_string(index) + "]";

@@ -9,6 +9,7 @@
 
 #include "geometry/conductor_layout.hpp"
 #include "geometry/error.hpp"
+#include "geometry/number_text.hpp"
 #include "geometry/utm.hpp"
 #include "io/scenario/esri_ascii_grid.hpp"
 #include "io/scenario/value_ranges.hpp"
@@ -34,12 +35,6 @@ const std::map<std::string, std::string>& validator_keys() {
 constexpr int kMaxForestTrees = 1'000'000;
 constexpr double kTerrainHeightToleranceM = 1e-6;
 constexpr int kTerrainIterations = 20;
-
-std::string number_text(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.9g", value);
-  return text;
-}
 
 double positive(const YamlValue& value) {
   const double x = value.number();

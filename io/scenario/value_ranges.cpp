@@ -2,7 +2,8 @@
 
 #include <array>
 #include <cmath>
-#include <cstdio>
+
+#include "geometry/number_text.hpp"
 
 namespace owsim {
 namespace {
@@ -76,12 +77,10 @@ constexpr std::array kRanges = {
     ValueRange{"scene.forest.reflectivity", 0.0, 1.0, ""},
 };
 
-// Whole numbers below 1e10 digit by digit (a count of 1000000000, not 1e+09); others %.9g.
-std::string number_text(double value) {
-  char text[32];
+// Whole numbers below 1e10 digit by digit (a count of 1000000000, not 1e+09); others to 9 digits.
+std::string range_number_text(double value) {
   const bool whole = std::abs(value) < 1e10 && value == std::trunc(value);
-  std::snprintf(text, sizeof text, whole ? "%.15g" : "%.9g", value);
-  return text;
+  return number_text(value, whole ? 15 : 9);
 }
 
 }  // namespace
@@ -119,9 +118,9 @@ std::string out_of_range_problem(std::string_view key_path, double value) {
   const ValueRange* range = value_range_of(key_path);
   if (range == nullptr || (value >= range->min && value <= range->max)) return {};
   std::string problem =
-      "must be in [" + number_text(range->min) + ", " + number_text(range->max) + "]";
+      "must be in [" + range_number_text(range->min) + ", " + range_number_text(range->max) + "]";
   if (!range->unit.empty()) problem += " " + std::string(range->unit);
-  return problem + ", got " + number_text(value);
+  return problem + ", got " + range_number_text(value);
 }
 
 }  // namespace owsim
