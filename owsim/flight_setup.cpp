@@ -20,27 +20,30 @@ constexpr int kMaxThreads = 4096;
 // The longest run, in frames (about 38 days of sensor time): counts stay far from overflow.
 constexpr std::int64_t kMaxFrames = 10'000'000;
 
-// Throws "<where>: lies … m from the scenario origin; …" unless every coordinate of `enu_m` is
-// within kMaxOffsetFromOriginM: the ray tracer works in floats relative to the origin.
-void require_near_origin(const Eigen::Vector3d& enu_m, const std::string& where) {
+// Throws "<where()>: lies … m from the scenario origin; …" unless every coordinate of `enu_m` is
+// within kMaxOffsetFromOriginM: the ray tracer works in floats relative to the origin. `where`
+// makes its text only for the error (it is asked for every conductor vertex and frame start).
+template <typename Where>
+void require_near_origin(const Eigen::Vector3d& enu_m, const Where& where) {
   const double offset = enu_m.cwiseAbs().maxCoeff();
   if (offset <= kMaxOffsetFromOriginM) return;
-  throw input_error(where, "lies " + number_text(offset, 6) +
-                               " m from the scenario origin; owsim simulates within " +
-                               number_text(kMaxOffsetFromOriginM, 6) +
-                               " m of it (the ray tracer's float coordinates keep 16 mm there): "
-                               "put the origin near the flight");
+  throw input_error(where(), "lies " + number_text(offset, 6) +
+                                 " m from the scenario origin; owsim simulates within " +
+                                 number_text(kMaxOffsetFromOriginM, 6) +
+                                 " m of it (the ray tracer's float coordinates keep 16 mm there): "
+                                 "put the origin near the flight");
 }
 
 const Scene& checked_near_origin(const Scene& scene, const std::string& scenario) {
   for (const Conductor& conductor : scene.conductors) {
     for (const auto& point : conductor.points_enu_m) {
-      require_near_origin(point, scenario + ": scene object '" + conductor.id + "'");
+      require_near_origin(point,
+                          [&] { return scenario + ": scene object '" + conductor.id + "'"; });
     }
   }
   for (const Cylinder& cylinder : scene.cylinders) {
     require_near_origin(cylinder.base_enu_m + Eigen::Vector3d(0, 0, cylinder.height_m),
-                        scenario + ": scene object '" + cylinder.id + "'");
+                        [&] { return scenario + ": scene object '" + cylinder.id + "'"; });
   }
   return scene;
 }
@@ -133,8 +136,9 @@ Eigen::AlignedBox2d flight_extent(const Trajectory& trajectory, const Scenario& 
     const double t_s =
         pulse_time_s(scan, std::min(f, frames - 1), f == frames ? scan.pulses_per_frame() - 1 : 0);
     const Pose pose = trajectory.pose_at(t_s);
-    require_near_origin(pose.position_enu_m,
-                        source + ": the flight at t = " + number_text(t_s, 6) + " s");
+    require_near_origin(pose.position_enu_m, [&] {
+      return source + ": the flight at t = " + number_text(t_s, 6) + " s";
+    });
     box.extend(pose.position_enu_m.head<2>());
   }
   return box;

@@ -4,7 +4,6 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
-#include <fstream>
 #include <numbers>
 #include <string_view>
 
@@ -36,15 +35,7 @@ enum Field : std::size_t {
 }  // namespace
 
 std::vector<NavRecord> read_sbet(const std::string& path) {
-  require_input_file(path, "SBET trajectory file", kMaxTrajectoryBytes);
-  std::ifstream file(path, std::ios::binary | std::ios::ate);
-  if (!file) throw file_error(path, "cannot open the SBET trajectory file");
-  std::vector<unsigned char> bytes(static_cast<std::size_t>(file.tellg()));
-  file.seekg(0);
-  if (!file.read(reinterpret_cast<char*>(bytes.data()),
-                 static_cast<std::streamsize>(bytes.size()))) {
-    throw file_error(path, "cannot read the SBET trajectory file");
-  }
+  const std::string bytes = read_input_file(path, "SBET trajectory file", kMaxTrajectoryBytes);
   if (bytes.size() % kSbetRecordBytes != 0) {
     throw input_error(path, "truncated record at byte " +
                                 std::to_string(bytes.size() / kSbetRecordBytes * kSbetRecordBytes) +
@@ -60,7 +51,8 @@ std::vector<NavRecord> read_sbet(const std::string& path) {
         path + ": record " + std::to_string(i) + " at byte " + std::to_string(offset);
     std::array<double, 17> value{};
     for (std::size_t f = 0; f < value.size(); ++f) {
-      value[f] = std::bit_cast<double>(load_little_endian<std::uint64_t>(&bytes[offset + 8 * f]));
+      value[f] = std::bit_cast<double>(load_little_endian<std::uint64_t>(
+          reinterpret_cast<const unsigned char*>(bytes.data()) + offset + 8 * f));
       if (!std::isfinite(value[f])) {
         throw input_error(where, std::string(kFieldNames[f]) + " is not a finite number");
       }
