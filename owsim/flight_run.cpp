@@ -15,23 +15,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// "d64,points,…": the outputs in a fixed order.
-std::string output_list(const std::set<OutputKind>& outputs) {
-  static constexpr std::pair<OutputKind, const char*> kNames[] = {
-      {OutputKind::d64, "d64"},
-      {OutputKind::points, "points"},
-      {OutputKind::trajectory, "trajectory"},
-      {OutputKind::summary, "summary"},
-      {OutputKind::quicklook, "quicklook"}};
-  std::string list;
-  for (const auto& [kind, name] : kNames) {
-    if (!outputs.contains(kind)) continue;
-    if (!list.empty()) list += ',';
-    list += name;
-  }
-  return list;
-}
-
 // What makes a run's output bytes (io/run/run_checkpoint.hpp `run`): owsim's version, the
 // scenario's text and the files it reads, and the options that change bytes. Not the thread count,
 // which changes none.

@@ -148,6 +148,16 @@ void AtomicOutputFile::write_at(std::uint64_t offset, const void* data, std::siz
   }
 }
 
+void AtomicOutputFile::skip(std::uint64_t size) {
+  require_open("write");
+  errno = 0;
+  if (std::fflush(file_) != 0 ||
+      ::fseeko(file_, static_cast<off_t>(bytes_written_ + size), SEEK_SET) != 0) {
+    fail("cannot write " + partial_path_.string(), errno);
+  }
+  bytes_written_ += size;
+}
+
 void AtomicOutputFile::flush() {
   require_open("flush");
   errno = 0;

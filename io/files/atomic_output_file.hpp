@@ -51,6 +51,9 @@ class AtomicOutputFile {
   // Overwrites bytes already written (e.g. a header whose counts are known only at the end);
   // [offset, offset + size) must lie within bytes_written(). Later write() calls still append.
   void write_at(std::uint64_t offset, const void* data, std::size_t size);
+  // Counts the next `size` bytes as written without writing them: another process puts them into
+  // the temporary (a distributed run, distributed/run_placement.hpp). Later writes go after them.
+  void skip(std::uint64_t size);
   // Hands every byte written so far to the kernel (no fsync): they survive the process being
   // killed, and the temporary then holds exactly bytes_written() bytes.
   void flush();

@@ -333,6 +333,16 @@ void Quicklook::write_range_image(const FrameView& frame) {
 
 QuicklookCheckpoint Quicklook::checkpoint() const { return {mask_, last_trajectory_px_}; }
 
+void Quicklook::add_map_hits(std::span<const std::uint8_t> map_mask) {
+  require_open("add_map_hits");
+  if (map_mask.size() != mask_.size()) {
+    throw input_error("quicklook", "a map mask of " + std::to_string(map_mask.size()) +
+                                       " bytes for " + std::to_string(base_.width()) + " × " +
+                                       std::to_string(base_.height()) + " pixels");
+  }
+  for (std::size_t i = 0; i < mask_.size(); ++i) mask_[i] |= map_mask[i];
+}
+
 void Quicklook::restore(QuicklookCheckpoint from) {
   require_open("restore");
   if (from.map_mask.size() != mask_.size()) {

@@ -107,6 +107,11 @@ class Quicklook {
   void finish();
 
   [[nodiscard]] QuicklookCheckpoint checkpoint() const;
+  // ORs the map mask of another Quicklook of the same scene, scan, region and options (its
+  // checkpoint's map_mask) into this one's: the hits of frames another process added (a
+  // distributed run). The trajectory bits are ORed too; the last trajectory point stays. Throws
+  // owsim::Error if the mask's size is not this map's.
+  void add_map_hits(std::span<const std::uint8_t> map_mask);
   // Continues from the state of a Quicklook built with the same scene, scan, region and options.
   // Throws owsim::Error if the mask's size is not this map's.
   void restore(QuicklookCheckpoint from);

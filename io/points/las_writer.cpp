@@ -47,10 +47,10 @@ void put_text(unsigned char* bytes, std::size_t offset, std::size_t size, std::s
 }
 
 std::int32_t record_value(double coordinate_m, double offset_m, double scale_m,
-                          const std::filesystem::path& path, const PointRecord& point) {
+                          const std::string& path, const PointRecord& point) {
   const double steps = std::round((coordinate_m - offset_m) / scale_m);
   if (!(std::abs(steps) <= static_cast<double>(std::numeric_limits<std::int32_t>::max()))) {
-    throw input_error(path.string(),
+    throw input_error(path,
                       "frame " + std::to_string(point.frame) + " pulse " +
                           std::to_string(point.pulse) + ": coordinate " +
                           std::to_string(coordinate_m) + " m is further than LAS int32 " +
@@ -97,19 +97,15 @@ LasDate las_date_utc(std::int64_t seconds_since_epoch) {
   return {static_cast<int>((day - new_year).count()) + 1, static_cast<int>(date.year())};
 }
 
-LasWriter::LasWriter(AtomicOutputFile file, const LasWriterOptions& options, LasDate creation_date)
-    : file_(std::move(file)),
-      intensity_full_scale_(options.intensity_full_scale),
-      creation_date_(creation_date),
-      buffer_(kBufferPoints * kLasPointRecordBytes) {
-  const std::string where = file_.final_path().string();
+LasPointEncoder::LasPointEncoder(std::string file, const LasWriterOptions& options)
+    : file_(std::move(file)), intensity_full_scale_(options.intensity_full_scale) {
   if (!(options.scale_m > 0) || !std::isfinite(options.scale_m)) {
-    throw input_error(where, "LAS coordinate scale must be a positive number of metres");
+    throw input_error(file_, "LAS coordinate scale must be a positive number of metres");
   }
   if (!(intensity_full_scale_ > 0) || !std::isfinite(intensity_full_scale_)) {
-    throw input_error(where, "LAS intensity full scale must be a positive energy ratio");
+    throw input_error(file_, "LAS intensity full scale must be a positive energy ratio");
   }
-  validate_geodetic(options.origin, where + ": origin");
+  validate_geodetic(options.origin, file_ + ": origin");
   const UtmPoint origin = utm_from_geodetic(options.origin.lat_deg, options.origin.lon_deg);
   grid_.zone = origin.zone;
   grid_.northp = origin.northp;
@@ -117,15 +113,22 @@ LasWriter::LasWriter(AtomicOutputFile file, const LasWriterOptions& options, Las
   grid_.offset_m = {std::round(origin.easting_m / kOffsetRoundingEnM) * kOffsetRoundingEnM,
                     std::round(origin.northing_m / kOffsetRoundingEnM) * kOffsetRoundingEnM,
                     std::round(options.origin.h_m / kOffsetRoundingUpM) * kOffsetRoundingUpM};
+}
 
-  const std::size_t wkt_bytes = utm_wkt(grid_.zone, grid_.northp).size() + 1;  // null-terminated
+LasWriter::LasWriter(AtomicOutputFile file, const LasWriterOptions& options, LasDate creation_date)
+    : file_(std::move(file)),
+      format_(file_.final_path().string(), options),
+      creation_date_(creation_date),
+      buffer_(kBufferPoints * kLasPointRecordBytes) {
+  const LasGrid& grid = format_.grid();
+  const std::size_t wkt_bytes = utm_wkt(grid.zone, grid.northp).size() + 1;  // null-terminated
   offset_to_points_ = static_cast<std::uint32_t>(kLasHeaderBytes + kLasVlrHeaderBytes + wkt_bytes);
 }
 
 LasWriter::LasWriter(std::filesystem::path final_path, const LasWriterOptions& options)
     : LasWriter(AtomicOutputFile(std::move(final_path), options.file), options,
                 options.creation_date.value_or(las_date_utc(std::time(nullptr)))) {
-  const std::string wkt = utm_wkt(grid_.zone, grid_.northp);
+  const std::string wkt = utm_wkt(grid().zone, grid().northp);
   const std::size_t wkt_bytes = wkt.size() + 1;
   const auto header = header_bytes();
   file_.write(header.data(), header.size());
@@ -187,12 +190,13 @@ std::array<unsigned char, kLasHeaderBytes> LasWriter::header_bytes() const {
   h[104] = kLasPointFormat;
   put<std::uint16_t>(h, 105, static_cast<std::uint16_t>(kLasPointRecordBytes));
   // 107: legacy point count and 111: legacy counts by return stay 0 (format ≥ 6).
+  const LasGrid& grid = format_.grid();
   for (std::size_t axis = 0; axis < 3; ++axis) {
-    put_double(h, 131 + 8 * axis, grid_.scale_m);
-    put_double(h, 155 + 8 * axis, grid_.offset_m[axis]);
+    put_double(h, 131 + 8 * axis, grid.scale_m);
+    put_double(h, 155 + 8 * axis, grid.offset_m[axis]);
     const bool any = points_written_ > 0;
-    const double max = any ? grid_.offset_m[axis] + max_record_[axis] * grid_.scale_m : 0.0;
-    const double min = any ? grid_.offset_m[axis] + min_record_[axis] * grid_.scale_m : 0.0;
+    const double max = any ? grid.offset_m[axis] + max_record_[axis] * grid.scale_m : 0.0;
+    const double min = any ? grid.offset_m[axis] + min_record_[axis] * grid.scale_m : 0.0;
     put_double(h, 179 + 16 * axis, max);
     put_double(h, 187 + 16 * axis, min);
   }
@@ -204,11 +208,11 @@ std::array<unsigned char, kLasHeaderBytes> LasWriter::header_bytes() const {
   return header;
 }
 
-void LasWriter::encode_point(const PointRecord& point, LasEncodedPoints& out) const {
-  const std::filesystem::path& path = file_.final_path();
+void LasPointEncoder::encode_point(const PointRecord& point, LasEncodedPoints& out) const {
+  const std::string& path = file_;
   if (point.return_number < 1 || point.return_number > point.number_of_returns ||
       point.number_of_returns > kLasMaxReturns) {
-    throw input_error(path.string(), "frame " + std::to_string(point.frame) + " pulse " +
+    throw input_error(path, "frame " + std::to_string(point.frame) + " pulse " +
                                          std::to_string(point.pulse) + ": return " +
                                          std::to_string(point.return_number) + " of " +
                                          std::to_string(point.number_of_returns) +
@@ -222,7 +226,7 @@ void LasWriter::encode_point(const PointRecord& point, LasEncodedPoints& out) co
     GeographicLib::UTMUPS::Forward(point.geodetic.lat_deg, point.geodetic.lon_deg, zone, northp,
                                    easting_m, northing_m, grid_.zone);
   } catch (const std::exception& error) {
-    throw input_error(path.string(), "frame " + std::to_string(point.frame) + " pulse " +
+    throw input_error(path, "frame " + std::to_string(point.frame) + " pulse " +
                                          std::to_string(point.pulse) + ": not in " +
                                          utm_crs_name(grid_.zone, grid_.northp) + ": " +
                                          error.what());
@@ -263,6 +267,10 @@ void LasWriter::write(std::span<const PointRecord> points) {
 }
 
 void LasWriter::encode(std::span<const PointRecord> points, LasEncodedPoints& out) const {
+  format_.encode(points, out);
+}
+
+void LasPointEncoder::encode(std::span<const PointRecord> points, LasEncodedPoints& out) const {
   out.records.resize(points.size() * kLasPointRecordBytes);
   out.points = 0;
   out.points_by_return.fill(0);
@@ -279,6 +287,17 @@ void LasWriter::append(const LasEncodedPoints& encoded) {
     std::copy_n(encoded.records.data(), bytes, buffer_.data() + buffered_bytes_);
     buffered_bytes_ += bytes;
   }
+  add_statistics(encoded);
+}
+
+void LasWriter::skip(const LasEncodedPoints& placed) {
+  if (placed.points == 0) return;
+  flush_buffer();
+  file_.skip(placed.points * kLasPointRecordBytes);
+  add_statistics(placed);
+}
+
+void LasWriter::add_statistics(const LasEncodedPoints& encoded) {
   for (std::size_t axis = 0; axis < 3; ++axis) {
     if (points_written_ == 0 || encoded.min_record[axis] < min_record_[axis]) {
       min_record_[axis] = encoded.min_record[axis];

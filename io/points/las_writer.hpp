@@ -95,6 +95,25 @@ struct LasEncodedPoints {
   std::array<std::int32_t, 3> max_record{};
 };
 
+// The point records points.las holds for points, without a file: what LasWriter::encode writes,
+// for encoders that run where no writer is (the other processes of a distributed run).
+class LasPointEncoder {
+ public:
+  // `file` names the file in errors. Throws owsim::Error on a bad origin, a scale that is not
+  // positive, or a full scale that is not positive.
+  LasPointEncoder(std::string file, const LasWriterOptions& options);
+  // As LasWriter::encode.
+  void encode(std::span<const PointRecord> points, LasEncodedPoints& out) const;
+  [[nodiscard]] const LasGrid& grid() const { return grid_; }
+
+ private:
+  void encode_point(const PointRecord& point, LasEncodedPoints& out) const;
+
+  std::string file_;
+  LasGrid grid_;
+  double intensity_full_scale_ = 1.0;
+};
+
 class LasWriter final : public PointSink {
  public:
   // Writes the header and the WKT record. Throws owsim::Error on a bad origin, a scale that is
@@ -116,22 +135,24 @@ class LasWriter final : public PointSink {
   // with append(); throws as write()), append() writes them and adds their statistics.
   void encode(std::span<const PointRecord> points, LasEncodedPoints& out) const;
   void append(const LasEncodedPoints& encoded);
+  // Adds the statistics of `placed`, whose records another process put into the temporary after
+  // the ones written so far (a distributed run); its `records` are not read.
+  void skip(const LasEncodedPoints& placed);
   // Completes the header (counts, bounds) and renames the file to its final name.
   void finish() override;
   [[nodiscard]] std::uint64_t points_written() const override { return points_written_; }
-  [[nodiscard]] const LasGrid& grid() const { return grid_; }
+  [[nodiscard]] const LasGrid& grid() const { return format_.grid(); }
   // Hands every point written so far to the kernel; where to resume from.
   [[nodiscard]] LasCheckpoint checkpoint();
 
  private:
   LasWriter(AtomicOutputFile file, const LasWriterOptions& options, LasDate creation_date);
-  void encode_point(const PointRecord& point, LasEncodedPoints& out) const;
   void flush_buffer();
+  void add_statistics(const LasEncodedPoints& encoded);
   [[nodiscard]] std::array<unsigned char, kLasHeaderBytes> header_bytes() const;
 
   AtomicOutputFile file_;
-  LasGrid grid_;
-  double intensity_full_scale_ = 1.0;
+  LasPointEncoder format_;
   LasDate creation_date_;
   std::uint32_t offset_to_points_ = 0;
   std::vector<unsigned char> buffer_;

@@ -120,6 +120,12 @@ void PlyWriter::append(std::span<const unsigned char> vertices) {
   points_written_ += vertices.size() / kPlyVertexBytes;
 }
 
+void PlyWriter::skip(std::uint64_t vertices) {
+  flush_buffer();
+  file_.skip(vertices * kPlyVertexBytes);
+  points_written_ += vertices;
+}
+
 void PlyWriter::flush_buffer() {
   file_.write(buffer_.data(), buffered_bytes_);
   buffered_bytes_ = 0;

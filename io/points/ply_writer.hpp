@@ -47,6 +47,9 @@ class PlyWriter final : public PointSink {
   // with the 29-byte vertices of `points`; append() writes encoded vertices.
   static void encode(std::span<const PointRecord> points, std::vector<unsigned char>& vertices);
   void append(std::span<const unsigned char> vertices);
+  // Counts `vertices` vertices as written that another process put into the temporary after the
+  // ones written so far (a distributed run).
+  void skip(std::uint64_t vertices);
   // Rewrites the header with the vertex count and renames the file to its final name.
   void finish() override;
   [[nodiscard]] std::uint64_t points_written() const override { return points_written_; }

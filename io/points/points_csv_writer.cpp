@@ -15,11 +15,21 @@ constexpr std::size_t kFlushBytes = std::size_t{1} << 20;
 
 }  // namespace
 
-PointsCsvWriter::PointsCsvWriter(AtomicOutputFile file, std::vector<std::string> object_ids,
-                                 std::uint64_t points_written)
-    : file_(std::move(file)), points_written_(points_written) {
+PointsCsvRows::PointsCsvRows(std::string file, const std::vector<std::string>& object_ids)
+    : file_(std::move(file)) {
   object_cells_.reserve(object_ids.size());
   for (const std::string& id : object_ids) object_cells_.push_back(csv_cell(id));
+}
+
+void PointsCsvRows::encode(std::span<const PointRecord> points, std::string& rows) const {
+  for (const PointRecord& point : points) append_row(point, rows);
+}
+
+PointsCsvWriter::PointsCsvWriter(AtomicOutputFile file, std::vector<std::string> object_ids,
+                                 std::uint64_t points_written)
+    : file_(std::move(file)),
+      format_(file_.final_path().string(), object_ids),
+      points_written_(points_written) {
   buffer_.reserve(kFlushBytes);  // append() never fills it past the flush mark
 }
 
@@ -43,9 +53,9 @@ WriterCheckpoint PointsCsvWriter::checkpoint() {
   return {file_.bytes_written(), points_written_};
 }
 
-void PointsCsvWriter::append_row(const PointRecord& point, std::string& out) const {
+void PointsCsvRows::append_row(const PointRecord& point, std::string& out) const {
   if (point.object_index != kNoObject && point.object_index >= object_cells_.size()) {
-    throw input_error(file_.final_path().string(),
+    throw input_error(file_,
                       "object index " + std::to_string(point.object_index) +
                           " is not in the table of " + std::to_string(object_cells_.size()) +
                           " object ids");
@@ -93,7 +103,7 @@ void PointsCsvWriter::write(std::span<const PointRecord> points) {
 }
 
 void PointsCsvWriter::encode(std::span<const PointRecord> points, std::string& rows) const {
-  for (const PointRecord& point : points) append_row(point, rows);
+  format_.encode(points, rows);
 }
 
 void PointsCsvWriter::append(std::string_view rows, std::uint64_t row_count) {
@@ -103,6 +113,12 @@ void PointsCsvWriter::append(std::string_view rows, std::uint64_t row_count) {
   } else {
     buffer_ += rows;
   }
+  points_written_ += row_count;
+}
+
+void PointsCsvWriter::skip(std::uint64_t bytes, std::uint64_t row_count) {
+  flush_buffer();
+  file_.skip(bytes);
   points_written_ += row_count;
 }
 

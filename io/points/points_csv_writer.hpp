@@ -29,6 +29,24 @@ inline constexpr std::string_view kPointsCsvHeader =
     "frame,pulse,line,fiber,return,time_s,range_m,counter,e_m,n_m,u_m,lat_deg,lon_deg,h_m,class,"
     "object,energy_rel,incidence_deg";
 
+// The rows points.csv holds for points, without a file: what PointsCsvWriter::encode writes, for
+// encoders that run where no writer is (the other processes of a distributed run).
+class PointsCsvRows {
+ public:
+  // object_ids[i] is the `object` cell of a record with object_index i; `file` names the file in
+  // errors.
+  PointsCsvRows(std::string file, const std::vector<std::string>& object_ids);
+  // Appends the rows of `points` to `rows`. Throws owsim::Error if a record's object_index is
+  // neither kNoObject nor in the table.
+  void encode(std::span<const PointRecord> points, std::string& rows) const;
+
+ private:
+  void append_row(const PointRecord& point, std::string& out) const;
+
+  std::string file_;
+  std::vector<std::string> object_cells_;  // the ids, already CSV-quoted where needed
+};
+
 class PointsCsvWriter final : public PointSink {
  public:
   // object_ids[i] is the `object` cell of a record with object_index i. Writes the header line.
@@ -48,6 +66,9 @@ class PointsCsvWriter final : public PointSink {
   // itself and with append(); throws as write()), append() writes `row_count` encoded rows.
   void encode(std::span<const PointRecord> points, std::string& rows) const;
   void append(std::string_view rows, std::uint64_t row_count);
+  // Counts `row_count` rows of `bytes` bytes as written that another process put into the
+  // temporary after the ones written so far (a distributed run).
+  void skip(std::uint64_t bytes, std::uint64_t row_count);
   void finish() override;
   [[nodiscard]] std::uint64_t points_written() const override { return points_written_; }
   // Hands every row written so far to the kernel; where to resume from.
@@ -56,11 +77,10 @@ class PointsCsvWriter final : public PointSink {
  private:
   PointsCsvWriter(AtomicOutputFile file, std::vector<std::string> object_ids,
                   std::uint64_t points_written);
-  void append_row(const PointRecord& point, std::string& out) const;
   void flush_buffer();
 
   AtomicOutputFile file_;
-  std::vector<std::string> object_cells_;  // the ids, already CSV-quoted where needed
+  PointsCsvRows format_;
   std::string buffer_;
   std::string rows_;  // write()'s encoded rows, reused
   std::uint64_t points_written_ = 0;

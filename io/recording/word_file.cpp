@@ -86,6 +86,13 @@ void WordFileWriter<Word>::flush_buffer() {
 }
 
 template <typename Word>
+void WordFileWriter<Word>::skip(std::uint64_t words) {
+  flush_buffer();
+  file_.skip(words * sizeof(Word));
+  words_written_ += words;
+}
+
+template <typename Word>
 WriterCheckpoint WordFileWriter<Word>::checkpoint() {
   flush_buffer();
   file_.flush();

@@ -40,6 +40,9 @@ class WordFileWriter {
 
   void write(Word word);
   void write(std::span<const Word> words);  // e.g. a whole frame at once
+  // Counts `words` words as written that another process put into the temporary after the ones
+  // written so far (a distributed run).
+  void skip(std::uint64_t words);
   // Hands every word written so far to the kernel; where to resume from.
   [[nodiscard]] WriterCheckpoint checkpoint();
   // Flushes the buffer and renames the file to its final name.

@@ -28,8 +28,8 @@ class WordSink {
  public:
   WordSink(const std::filesystem::path& directory, const ScanParams& scan,
            const WriterCheckpoint* resume_from)
-      : scan_(scan) {
-    const std::filesystem::path path = directory / file_name(scan);
+      : pulses_per_frame_(static_cast<std::uint64_t>(scan.pulses_per_frame())) {
+    const std::filesystem::path path = directory / word_file_name(scan);
     if (scan.model == SensorModel::milows) {
       if (resume_from != nullptr) {
         milows_.emplace(WordFileWriter<std::uint64_t>::resume(path, *resume_from));
@@ -46,42 +46,6 @@ class WordSink {
     }
   }
 
-  [[nodiscard]] static std::string_view file_name(const ScanParams& scan) {
-    return scan.model == SensorModel::milows ? "flight.d64" : "flight.hellas";
-  }
-
-  // The word buffer of `out` sized for a frame (once per encoding).
-  void size(FrameEncoding& out) const {
-    const auto pulses = static_cast<std::size_t>(scan_.pulses_per_frame());
-    if (scan_.model == SensorModel::milows) {
-      out.milows_words.resize(pulses);
-    } else {
-      out.hellas_words.resize(pulses);
-    }
-  }
-
-  // The words of pulses [first, first + count) into their places in `out` (sized; reads only
-  // scan_: safe on any thread beside append(), concurrently for disjoint pulses).
-  void encode(const FrameView& frame, std::size_t first, std::size_t count,
-              FrameEncoding& out) const {
-    const auto pulses = frame.pulses.subspan(first, count);
-    const auto returns = frame.returns.subspan(first, count);
-    if (scan_.model == SensorModel::milows) {
-      pack_milows_frame(pulses, returns,
-                        std::span<std::uint64_t>(out.milows_words).subspan(first, count));
-      return;
-    }
-    pack_hellas_frame(scan_, frame.sweep, pulses, returns,
-                      std::span<std::uint32_t>(out.hellas_words).subspan(first, count));
-  }
-
-  // What the file takes once from a frame: the HELLAS header word, before the first frame.
-  void encode_header(const FrameView& frame, FrameEncoding& out) const {
-    if (scan_.model == SensorModel::hellas) {
-      out.hellas_header_word = hellas_file_header_word(frame.sweep, frame.pulses.front().time_s);
-    }
-  }
-
   void append(const FrameEncoding& encoded) {
     if (milows_) {
       milows_->write(std::span<const std::uint64_t>(encoded.milows_words));
@@ -94,6 +58,16 @@ class WordSink {
     hellas_->write(std::span<const std::uint32_t>(encoded.hellas_words));
   }
 
+  // A frame's words (and the header word before the first), placed by another process.
+  void skip_frame() {
+    if (milows_) {
+      milows_->skip(pulses_per_frame_);
+      return;
+    }
+    hellas_->skip(pulses_per_frame_ + (header_written_ ? 0 : 1));
+    header_written_ = true;
+  }
+
   [[nodiscard]] WriterCheckpoint checkpoint() {
     return milows_ ? milows_->checkpoint() : hellas_->checkpoint();
   }
@@ -104,42 +78,11 @@ class WordSink {
   }
 
  private:
-  ScanParams scan_;
+  std::uint64_t pulses_per_frame_;
   std::optional<WordFileWriter<std::uint64_t>> milows_;
   std::optional<WordFileWriter<std::uint32_t>> hellas_;
   bool header_written_ = false;
 };
-
-std::set<OutputKind> all_outputs() {
-  return {OutputKind::d64, OutputKind::points, OutputKind::trajectory, OutputKind::summary,
-          OutputKind::quicklook};
-}
-
-std::set<OutputKind> parse_output_list(std::string_view list) {
-  std::set<OutputKind> kinds;
-  std::size_t begin = 0;
-  while (begin <= list.size()) {
-    const std::size_t comma = std::min(list.find(',', begin), list.size());
-    const std::string_view item = list.substr(begin, comma - begin);
-    if (item == "d64") {
-      kinds.insert(OutputKind::d64);
-    } else if (item == "points") {
-      kinds.insert(OutputKind::points);
-    } else if (item == "trajectory") {
-      kinds.insert(OutputKind::trajectory);
-    } else if (item == "summary") {
-      kinds.insert(OutputKind::summary);
-    } else if (item == "quicklook") {
-      kinds.insert(OutputKind::quicklook);
-    } else {
-      throw input_error("--outputs",
-                        "unknown output '" + std::string(item) +
-                            "' (expected d64, points, trajectory, summary, quicklook)");
-    }
-    begin = comma + 1;
-  }
-  return kinds;
-}
 
 FlightOutputs::FlightOutputs(const FlightOutputOptions& options, const Scene& scene,
                              const ScanParams& scan, const LocalFrame& local_frame,
@@ -148,6 +91,7 @@ FlightOutputs::FlightOutputs(const FlightOutputOptions& options, const Scene& sc
       scan_(scan),
       local_frame_(&local_frame),
       summary_(scene),
+      encoder_(options_.directory, options_.outputs, scene, scan, local_frame),
       checkpoint_path_(run_checkpoint_path(options_.directory)),
       last_checkpoint_(Clock::now()) {
   // The images' optional module (OpenImageIO) is loaded before anything is written or removed.
@@ -208,7 +152,7 @@ void FlightOutputs::open_outputs(const Scene& scene, const RunCheckpoint* from) 
       }
     };
     const bool points = wants(OutputKind::points);
-    check(wants(OutputKind::d64), directory / WordSink::file_name(scan_), from->words);
+    check(wants(OutputKind::d64), directory / word_file_name(scan_), from->words);
     check(points, directory / "points.csv", from->points_csv);
     check(points, directory / "points.las",
           from->points_las ? std::optional(from->points_las->file) : std::nullopt);
@@ -217,8 +161,8 @@ void FlightOutputs::open_outputs(const Scene& scene, const RunCheckpoint* from) 
   }
 
   if (wants(OutputKind::d64)) {
-    const auto* resume = state(&RunCheckpoint::words, WordSink::file_name(scan_));
-    if (!committed(directory / WordSink::file_name(scan_))) {
+    const auto* resume = state(&RunCheckpoint::words, word_file_name(scan_));
+    if (!committed(directory / word_file_name(scan_))) {
       words_ = std::make_unique<WordSink>(directory, scan_, resume);
     }
   }
@@ -284,77 +228,7 @@ void FlightOutputs::add_frame(const FrameView& frame, const Pose& frame_start) {
 
 void FlightOutputs::encode_frame(const FrameView& frame, const Pose& frame_start,
                                  FrameEncoding& out) const {
-  size_encoding(out);
-  encode_pulses(frame, 0, static_cast<int>(frame.pulses.size()), out);
-  finish_encoding(frame, frame_start, out);
-}
-
-void FlightOutputs::size_encoding(FrameEncoding& out) const {
-  if (words_) words_->size(out);
-  out.line_blocks.resize(static_cast<std::size_t>(scan_.lines_per_frame));
-}
-
-void FlightOutputs::encode_pulses(const FrameView& frame, int begin, int end,
-                                  FrameEncoding& out) const {
-  const int pulses = scan_.pulses_per_frame();
-  const int fibers = scan_.fibers_per_line;
-  if (begin < 0 || begin >= end || end > pulses || begin % fibers != 0 ||
-      (end % fibers != 0 && end != pulses) ||
-      frame.pulses.size() != static_cast<std::size_t>(pulses) ||
-      frame.returns.size() != frame.pulses.size() ||
-      out.line_blocks.size() != static_cast<std::size_t>(scan_.lines_per_frame)) {
-    throw Error("outputs: pulses " + std::to_string(begin) + ".." + std::to_string(end) +
-                " are not whole lines of a frame of this scan, or the encoding is not sized");
-  }
-  // The block's tally and error go to the entry of its first line; its other lines' are emptied.
-  const int first_line = begin / fibers;
-  const int end_line = (end + fibers - 1) / fibers;
-  for (int line = first_line + 1; line < end_line; ++line) {
-    FrameEncoding::LineBlock& empty = out.line_blocks[static_cast<std::size_t>(line)];
-    summary_.tally({}, {}, empty.tally);
-    empty.error = nullptr;
-  }
-  FrameEncoding::LineBlock& block = out.line_blocks[static_cast<std::size_t>(first_line)];
-  block.error = nullptr;
-  try {
-    const auto first = static_cast<std::size_t>(begin);
-    const auto count = static_cast<std::size_t>(end - begin);
-    // The tally feeds summary.json alone: without that output, the block's tally stays empty.
-    const std::size_t tallied = wants(OutputKind::summary) ? count : 0;
-    summary_.tally(frame.pulses.subspan(first, tallied), frame.returns.subspan(first, tallied),
-                   block.tally);
-    if (words_) words_->encode(frame, first, count, out);
-  } catch (...) {
-    block.error = std::current_exception();
-  }
-}
-
-void FlightOutputs::finish_encoding(const FrameView& frame, const Pose& frame_start,
-                                    FrameEncoding& out) const {
-  out.frame = frame.frame;
-  out.frame_start = frame_start;
-  out.error = nullptr;
-  // The blocks' parts in line order: the first error, and the tally as one pass would give it.
-  summary_.tally({}, {}, out.tally);
-  for (const FrameEncoding::LineBlock& block : out.line_blocks) {
-    if (block.error && !out.error) out.error = block.error;
-    out.tally.append(block.tally);
-  }
-  if (out.error) return;
-  try {
-    if (words_) words_->encode_header(frame, out);
-    if (points_csv_ || points_las_ || points_ply_) {
-      frame_points(frame, *local_frame_, out.points);
-      if (points_csv_) {
-        out.csv_rows.clear();
-        points_csv_->encode(out.points, out.csv_rows);
-      }
-      if (points_las_) points_las_->encode(out.points, out.las);
-      if (points_ply_) PlyWriter::encode(out.points, out.ply_vertices);
-    }
-  } catch (...) {
-    out.error = std::current_exception();
-  }
+  encoder_.encode_frame(frame, frame_start, out);
 }
 
 void FlightOutputs::add_frame(const FrameView& frame, const FrameEncoding& encoded) {
@@ -379,10 +253,50 @@ void FlightOutputs::add_frame(const FrameView& frame, const FrameEncoding& encod
   }
   ++frames_done_;
   resumed_while_finishing_ = false;
-  if (checkpointing() && std::chrono::duration<double>(Clock::now() - last_checkpoint_).count() >=
-                             options_.checkpoint_interval_s) {
-    write_checkpoint(false);
+  if (checkpoint_due()) write_checkpoint(false);
+}
+
+void FlightOutputs::add_placed_frame(const PlacedFrame& frame) {
+  if (frame.frame != frames_done_) {
+    throw Error("outputs: frame " + std::to_string(frame.frame) + " placed, frame " +
+                std::to_string(frames_done_) + " expected");
   }
+  summary_.add_frame(frame.frame, frame.tally);
+  if (words_) words_->skip_frame();
+  if (points_csv_) points_csv_->skip(frame.csv_bytes, frame.points);
+  if (points_las_) points_las_->skip(frame.las);
+  if (points_ply_) points_ply_->skip(frame.points);
+  if (trajectory_) trajectory_->write(frame.frame_start);
+  if (quicklook_) quicklook_->add_trajectory_point(frame.frame_start.position_enu_m);
+  ++frames_done_;
+  resumed_while_finishing_ = false;
+}
+
+void FlightOutputs::add_quicklook_frame(const FrameView& frame) {
+  if (quicklook_) quicklook_->add_frame(frame);
+}
+
+void FlightOutputs::add_map_hits(std::span<const std::uint8_t> map_mask) {
+  if (quicklook_) quicklook_->add_map_hits(map_mask);
+}
+
+bool FlightOutputs::checkpoint_due() const {
+  return checkpointing() && std::chrono::duration<double>(Clock::now() - last_checkpoint_).count() >=
+                                options_.checkpoint_interval_s;
+}
+
+FlightOutputs::PlacedFiles FlightOutputs::placed_files() {
+  // A writer's checkpoint hands its bytes to the kernel and says how many the file holds.
+  const auto placed = [](const auto& writer, const WriterCheckpoint& at) {
+    return PlacedFile{AtomicOutputFile::partial_path_for(writer), at.file_bytes};
+  };
+  PlacedFiles files;
+  const std::filesystem::path& directory = options_.directory;
+  if (words_) files.words = placed(directory / word_file_name(scan_), words_->checkpoint());
+  if (points_csv_) files.csv = placed(directory / "points.csv", points_csv_->checkpoint());
+  if (points_las_) files.las = placed(directory / "points.las", points_las_->checkpoint().file);
+  if (points_ply_) files.ply = placed(directory / "points.ply", points_ply_->checkpoint());
+  return files;
 }
 
 void FlightOutputs::write_checkpoint(bool finishing) {

@@ -24,19 +24,14 @@
 #include "geometry/scene.hpp"
 #include "io/points/point_record.hpp"
 #include "io/run/flight_summary.hpp"
+#include "io/run/frame_encoder.hpp"
 #include "io/run/frame_encoding.hpp"
+#include "io/run/output_kind.hpp"
 #include "sensor/frame_view.hpp"
 #include "sensor/mounting.hpp"
 #include "sensor/scan_params.hpp"
 
 namespace owsim {
-
-enum class OutputKind { d64, points, trajectory, summary, quicklook };
-
-// "d64,summary" → {d64, summary}; the word file is flight.hellas for a HELLAS scenario. Throws
-// owsim::Error naming the unknown item.
-[[nodiscard]] std::set<OutputKind> parse_output_list(std::string_view list);
-[[nodiscard]] std::set<OutputKind> all_outputs();
 
 struct FlightOutputOptions {
   std::filesystem::path directory;
@@ -83,17 +78,42 @@ class FlightOutputs {
   void encode_frame(const FrameView& frame, const Pose& frame_start, FrameEncoding& out) const;
   void add_frame(const FrameView& frame, const FrameEncoding& encoded);
 
-  // encode_frame() in three steps, so the per-pulse part (the words and the summary tally) runs on
-  // each block of a frame while the simulation has it in cache (FrameBlockDone of
-  // engine/frame_simulator.hpp): size_encoding() sizes an encoding's buffers for this scan, once;
-  // encode_pulses() encodes pulses [begin, end) of the frame, whole lines, concurrently for
-  // disjoint blocks of the frame (every line in exactly one block), an error kept in `out`; after
-  // the frame's last block, finish_encoding() does the rest. The result is encode_frame()'s.
-  // encode_pulses throws owsim::Error if the pulses are not whole lines of a frame of this scan or
-  // `out` is not sized.
-  void size_encoding(FrameEncoding& out) const;
-  void encode_pulses(const FrameView& frame, int begin, int end, FrameEncoding& out) const;
-  void finish_encoding(const FrameView& frame, const Pose& frame_start, FrameEncoding& out) const;
+  // encode_frame() in three steps (io/run/frame_encoder.hpp).
+  void size_encoding(FrameEncoding& out) const { encoder_.size_encoding(out); }
+  void encode_pulses(const FrameView& frame, int begin, int end, FrameEncoding& out) const {
+    encoder_.encode_pulses(frame, begin, end, out);
+  }
+  void finish_encoding(const FrameView& frame, const Pose& frame_start, FrameEncoding& out) const {
+    encoder_.finish_encoding(frame, frame_start, out);
+  }
+  [[nodiscard]] const FrameEncoder& encoder() const { return encoder_; }
+
+  // A distributed run (distributed/): the bytes of a frame were written into the temporaries at
+  // their places by the process that encoded it; this adds the rest in frame order from
+  // frames_done() (the summary, the trajectory, the counts, the LAS statistics) and counts the
+  // bytes as written. Writes no checkpoint: write_checkpoint() does, once every process's bytes
+  // are in the files. Throws owsim::Error for a frame out of order.
+  void add_placed_frame(const PlacedFrame& frame);
+  // The returns of a frame to the quick-look map (and its range image), for frames whose bytes
+  // are placed; the map's other hits come from the other processes through add_map_hits().
+  void add_quicklook_frame(const FrameView& frame);
+  // ORs another process's map state (QuicklookCheckpoint::map_mask) into the map.
+  void add_map_hits(std::span<const std::uint8_t> map_mask);
+  // True when checkpoints are kept and checkpoint_interval_s has passed since the last one.
+  [[nodiscard]] bool checkpoint_due() const;
+  // Writes the checkpoint of the frames so far (hands every byte written to the kernel first).
+  void write_checkpoint() { write_checkpoint(false); }
+  // The temporaries the bytes of the outputs go to, by output (empty paths for outputs not
+  // written), and the bytes each holds so far: where a distributed run places its frames.
+  struct PlacedFile {
+    std::filesystem::path partial_path;
+    std::uint64_t bytes = 0;
+  };
+  struct PlacedFiles {
+    PlacedFile words, csv, las, ply;
+  };
+  // Hands everything written so far to the kernel first.
+  [[nodiscard]] PlacedFiles placed_files();
 
   // Completes every file and writes summary.json with `run_facts` merged into the totals; then
   // removes the checkpoint.
@@ -107,7 +127,7 @@ class FlightOutputs {
  private:
   using Clock = std::chrono::steady_clock;
 
-  [[nodiscard]] bool wants(OutputKind kind) const { return options_.outputs.contains(kind); }
+  [[nodiscard]] bool wants(OutputKind kind) const { return encoder_.wants(kind); }
   [[nodiscard]] bool checkpointing() const { return !options_.checkpoint_run.is_null(); }
   void open_outputs(const Scene& scene, const RunCheckpoint* resume_from);
   void write_checkpoint(bool finishing);
@@ -122,6 +142,7 @@ class FlightOutputs {
   std::unique_ptr<PlyWriter> points_ply_;
   std::unique_ptr<TrajectoryCsvWriter> trajectory_;
   std::unique_ptr<Quicklook> quicklook_;
+  FrameEncoder encoder_;
   FrameEncoding encoding_;  // add_frame(frame, frame_start)'s, reused per frame
   std::int64_t frames_done_ = 0;
   bool resumed_while_finishing_ = false;  // the checkpoint already describes the finished frames

@@ -39,4 +39,17 @@ struct FrameEncoding {
   std::vector<LineBlock> line_blocks;
 };
 
+// What a frame adds to the outputs besides its bytes, for FlightOutputs::add_placed_frame when
+// another process wrote those bytes into the files at their places (a distributed run,
+// distributed/). The bytes follow from it: the words of every pulse (and the HELLAS header word
+// before frame 0), csv_bytes of points.csv, 30 bytes a point of points.las, 29 of points.ply.
+struct PlacedFrame {
+  std::int64_t frame = -1;
+  Pose frame_start;
+  FrameTally tally;
+  std::uint64_t points = 0;
+  std::uint64_t csv_bytes = 0;
+  LasEncodedPoints las;  // its statistics; `records` stays empty
+};
+
 }  // namespace owsim

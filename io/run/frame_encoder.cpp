@@ -1,0 +1,122 @@
+#include "io/run/frame_encoder.hpp"
+
+#include <exception>
+#include <string>
+
+#include "geometry/error.hpp"
+#include "io/points/frame_points.hpp"
+#include "io/points/ply_writer.hpp"
+#include "io/recording/frame_words.hpp"
+
+namespace owsim {
+
+FrameEncoder::FrameEncoder(const std::filesystem::path& directory,
+                           const std::set<OutputKind>& outputs, const Scene& scene,
+                           const ScanParams& scan, const LocalFrame& local_frame)
+    : outputs_(outputs), scan_(scan), local_frame_(&local_frame), tally_source_(scene) {
+  if (wants(OutputKind::points)) {
+    csv_.emplace((directory / "points.csv").string(), object_ids(scene));
+    LasWriterOptions las;
+    las.origin = local_frame.origin();
+    las_.emplace((directory / "points.las").string(), las);
+  }
+}
+
+void FrameEncoder::size_encoding(FrameEncoding& out) const {
+  if (wants(OutputKind::d64)) {
+    const auto pulses = static_cast<std::size_t>(scan_.pulses_per_frame());
+    if (scan_.model == SensorModel::milows) {
+      out.milows_words.resize(pulses);
+    } else {
+      out.hellas_words.resize(pulses);
+    }
+  }
+  out.line_blocks.resize(static_cast<std::size_t>(scan_.lines_per_frame));
+}
+
+void FrameEncoder::encode_pulses(const FrameView& frame, int begin, int end,
+                                 FrameEncoding& out) const {
+  const int pulses = scan_.pulses_per_frame();
+  const int fibers = scan_.fibers_per_line;
+  const bool words = wants(OutputKind::d64);
+  const std::size_t word_count =
+      scan_.model == SensorModel::milows ? out.milows_words.size() : out.hellas_words.size();
+  if (begin < 0 || begin >= end || end > pulses || begin % fibers != 0 ||
+      (end % fibers != 0 && end != pulses) ||
+      frame.pulses.size() != static_cast<std::size_t>(pulses) ||
+      frame.returns.size() != frame.pulses.size() ||
+      out.line_blocks.size() != static_cast<std::size_t>(scan_.lines_per_frame) ||
+      (words && word_count != frame.pulses.size())) {
+    throw Error("outputs: pulses " + std::to_string(begin) + ".." + std::to_string(end) +
+                " are not whole lines of a frame of this scan, or the encoding is not sized");
+  }
+  // The block's tally and error go to the entry of its first line; its other lines' are emptied.
+  const int first_line = begin / fibers;
+  const int end_line = (end + fibers - 1) / fibers;
+  for (int line = first_line + 1; line < end_line; ++line) {
+    FrameEncoding::LineBlock& empty = out.line_blocks[static_cast<std::size_t>(line)];
+    tally_source_.tally({}, {}, empty.tally);
+    empty.error = nullptr;
+  }
+  FrameEncoding::LineBlock& block = out.line_blocks[static_cast<std::size_t>(first_line)];
+  block.error = nullptr;
+  try {
+    const auto first = static_cast<std::size_t>(begin);
+    const auto count = static_cast<std::size_t>(end - begin);
+    // The tally feeds summary.json alone: without that output, the block's tally stays empty.
+    const std::size_t tallied = wants(OutputKind::summary) ? count : 0;
+    tally_source_.tally(frame.pulses.subspan(first, tallied),
+                        frame.returns.subspan(first, tallied), block.tally);
+    if (words) {
+      const auto block_pulses = frame.pulses.subspan(first, count);
+      const auto block_returns = frame.returns.subspan(first, count);
+      if (scan_.model == SensorModel::milows) {
+        pack_milows_frame(block_pulses, block_returns,
+                          std::span<std::uint64_t>(out.milows_words).subspan(first, count));
+      } else {
+        pack_hellas_frame(scan_, frame.sweep, block_pulses, block_returns,
+                          std::span<std::uint32_t>(out.hellas_words).subspan(first, count));
+      }
+    }
+  } catch (...) {
+    block.error = std::current_exception();
+  }
+}
+
+void FrameEncoder::finish_encoding(const FrameView& frame, const Pose& frame_start,
+                                   FrameEncoding& out) const {
+  out.frame = frame.frame;
+  out.frame_start = frame_start;
+  out.error = nullptr;
+  // The blocks' parts in line order: the first error, and the tally as one pass would give it.
+  tally_source_.tally({}, {}, out.tally);
+  for (const FrameEncoding::LineBlock& block : out.line_blocks) {
+    if (block.error && !out.error) out.error = block.error;
+    out.tally.append(block.tally);
+  }
+  if (out.error) return;
+  try {
+    // What the word file takes once: the HELLAS header word, before the first frame.
+    if (wants(OutputKind::d64) && scan_.model == SensorModel::hellas) {
+      out.hellas_header_word = hellas_file_header_word(frame.sweep, frame.pulses.front().time_s);
+    }
+    if (wants(OutputKind::points)) {
+      frame_points(frame, *local_frame_, out.points);
+      out.csv_rows.clear();
+      csv_->encode(out.points, out.csv_rows);
+      las_->encode(out.points, out.las);
+      PlyWriter::encode(out.points, out.ply_vertices);
+    }
+  } catch (...) {
+    out.error = std::current_exception();
+  }
+}
+
+void FrameEncoder::encode_frame(const FrameView& frame, const Pose& frame_start,
+                                FrameEncoding& out) const {
+  size_encoding(out);
+  encode_pulses(frame, 0, static_cast<int>(frame.pulses.size()), out);
+  finish_encoding(frame, frame_start, out);
+}
+
+}  // namespace owsim

@@ -1,0 +1,59 @@
+#pragma once
+// One frame's bytes for every output `owsim run` writes (io/run/flight_outputs.hpp), encoded
+// without the files: the sensor words, points.csv rows, points.las records, points.ply vertices
+// and the frame's part of summary.json. Every method is const and may run on any thread,
+// concurrently with itself (each call with its own FrameEncoding), so the costly part of the
+// outputs runs on the pipeline's parallel stage, and on every process of a distributed run
+// (distributed/), not only where the files are.
+#include <filesystem>
+#include <optional>
+#include <set>
+
+#include "geometry/geodetic_frame.hpp"
+#include "geometry/scene.hpp"
+#include "io/points/las_writer.hpp"
+#include "io/points/points_csv_writer.hpp"
+#include "io/run/flight_summary.hpp"
+#include "io/run/frame_encoding.hpp"
+#include "io/run/output_kind.hpp"
+#include "sensor/frame_view.hpp"
+#include "sensor/mounting.hpp"
+#include "sensor/scan_params.hpp"
+
+namespace owsim {
+
+class FrameEncoder {
+ public:
+  // The encoder of the `outputs` of a run into `directory` (which names the files in errors).
+  // Throws owsim::Error as LasWriter does for an origin points.las cannot hold.
+  FrameEncoder(const std::filesystem::path& directory, const std::set<OutputKind>& outputs,
+               const Scene& scene, const ScanParams& scan, const LocalFrame& local_frame);
+
+  // encode_frame() in three steps, so the per-pulse part (the words and the summary tally) runs on
+  // each block of a frame while the simulation has it in cache (FrameBlockDone of
+  // engine/frame_simulator.hpp): size_encoding() sizes an encoding's buffers for this scan, once;
+  // encode_pulses() encodes pulses [begin, end) of the frame, whole lines, concurrently for
+  // disjoint blocks of the frame (every line in exactly one block), an error kept in `out`; after
+  // the frame's last block, finish_encoding() does the rest. The result is encode_frame()'s.
+  // encode_pulses throws owsim::Error if the pulses are not whole lines of a frame of this scan or
+  // `out` is not sized.
+  void size_encoding(FrameEncoding& out) const;
+  void encode_pulses(const FrameView& frame, int begin, int end, FrameEncoding& out) const;
+  void finish_encoding(const FrameView& frame, const Pose& frame_start, FrameEncoding& out) const;
+  // All three for a whole frame; `frame_start` is the aircraft's pose at its first pulse. An
+  // error is kept in `out`, not thrown.
+  void encode_frame(const FrameView& frame, const Pose& frame_start, FrameEncoding& out) const;
+
+  [[nodiscard]] bool wants(OutputKind kind) const { return outputs_.contains(kind); }
+  [[nodiscard]] const ScanParams& scan() const { return scan_; }
+
+ private:
+  std::set<OutputKind> outputs_;
+  ScanParams scan_;
+  const LocalFrame* local_frame_;
+  FlightSummary tally_source_;  // tallies only: its totals stay empty
+  std::optional<PointsCsvRows> csv_;
+  std::optional<LasPointEncoder> las_;
+};
+
+}  // namespace owsim

@@ -1,0 +1,23 @@
+#pragma once
+// The output files of `owsim run` (INTERFACE.md "`owsim run` outputs") and their names.
+#include <set>
+#include <string>
+#include <string_view>
+
+#include "sensor/scan_params.hpp"
+
+namespace owsim {
+
+enum class OutputKind { d64, points, trajectory, summary, quicklook };
+
+// "d64,summary" → {d64, summary}; the word file is flight.hellas for a HELLAS scenario. Throws
+// owsim::Error naming the unknown item.
+[[nodiscard]] std::set<OutputKind> parse_output_list(std::string_view list);
+// The list parse_output_list reads back: the outputs in a fixed order, "d64,points,…".
+[[nodiscard]] std::string output_list(const std::set<OutputKind>& outputs);
+[[nodiscard]] std::set<OutputKind> all_outputs();
+
+// flight.d64 (MilOWS) or flight.hellas (HELLAS).
+[[nodiscard]] std::string_view word_file_name(const ScanParams& scan);
+
+}  // namespace owsim
