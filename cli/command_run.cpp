@@ -6,7 +6,9 @@
 
 #include "cli/commands.hpp"
 #include "cli/option_checks.hpp"
+#include "cli/mpi_job.hpp"
 #include "cli/progress_line.hpp"
+#include "distributed/distributed_run.hpp"
 #include "owsim/simulation.hpp"
 
 namespace owsim::cli {
@@ -19,6 +21,60 @@ struct RunCommandOptions {
   std::string outputs;
   bool quiet = false;
 };
+
+// The run, in this process alone or as one process of `comm` (quiet except process 0).
+void run_flight(RunCommandOptions options, Communicator* comm) {
+  RunOptions run = options.run;
+  if (!options.outputs.empty()) run.outputs = parse_output_list(options.outputs);
+  if (comm != nullptr && options.simulation.threads == 0) {
+    options.simulation.threads = default_threads_per_process(*comm);
+  }
+  const bool speaks = comm == nullptr || comm->rank() == 0;
+  const bool quiet = options.quiet || !speaks;
+  std::optional<Simulation> opened;
+  if (comm == nullptr) {
+    opened.emplace(Simulation::open(options.scenario, options.simulation));
+  } else {
+    std::string error;
+    try {
+      opened.emplace(Simulation::open(options.scenario, options.simulation));
+    } catch (const Error& e) {
+      error = e.what();
+    }
+    throw_if_any_failed(*comm, error);
+  }
+  const Simulation& simulation = *opened;
+  std::optional<ProgressLine> progress;
+  if (!quiet) {
+    run.progress = [&progress, &simulation](const RunProgress& at) {
+      if (!progress) {
+        progress.emplace(true, static_cast<std::uint64_t>(at.frames_total),
+                         static_cast<std::uint64_t>(at.first_frame));
+      }
+      progress->frame_done(static_cast<std::uint64_t>(at.frames_done),
+                           static_cast<std::uint64_t>(at.frames_done - at.first_frame) *
+                               static_cast<std::uint64_t>(simulation.pulses_per_frame()));
+    };
+  }
+  run.notice = [&](std::string_view note) {
+    const bool always = note.starts_with("no checkpoint");  // said even with --quiet
+    if (speaks && (always || !quiet)) fmt::print(stderr, "owsim run --resume: {}\n", note);
+  };
+  const RunReport report =
+      comm != nullptr ? run_distributed(*comm, simulation, run) : simulation.run(run);
+  if (!quiet) {
+    fmt::print(stderr,
+               "{} frames{}, {} pulses in {:.2f} s ({:.0f} pulses/s, {:.2f}× real time, {}) → {}\n",
+               report.frames,
+               report.first_frame > 0 ? fmt::format(" (resumed at {})", report.first_frame)
+                                      : std::string(),
+               report.pulses, report.wall_s, report.pulses_per_s, report.realtime_factor,
+               report.processes > 1 || comm != nullptr
+                   ? fmt::format("{} processes × {} threads", report.processes, report.threads)
+                   : fmt::format("{} threads", report.threads),
+               report.directory.string());
+  }
+}
 
 }  // namespace
 
@@ -47,35 +103,10 @@ void add_run_command(CLI::App& app, CommandResult& /*result*/) {
                     "continue an interrupted run (same options) from its last complete frame");
   command->add_flag("--quiet", options->quiet, "no progress line");
   command->callback([options] {
-    RunOptions run = options->run;
-    if (!options->outputs.empty()) run.outputs = parse_output_list(options->outputs);
-    const Simulation simulation = Simulation::open(options->scenario, options->simulation);
-    std::optional<ProgressLine> progress;
-    if (!options->quiet) {
-      run.progress = [&progress, &simulation](const RunProgress& at) {
-        if (!progress) {
-          progress.emplace(true, static_cast<std::uint64_t>(at.frames_total),
-                           static_cast<std::uint64_t>(at.first_frame));
-        }
-        progress->frame_done(static_cast<std::uint64_t>(at.frames_done),
-                             static_cast<std::uint64_t>(at.frames_done - at.first_frame) *
-                                 static_cast<std::uint64_t>(simulation.pulses_per_frame()));
-      };
-    }
-    run.notice = [options](std::string_view note) {
-      const bool always = note.starts_with("no checkpoint");  // said even with --quiet
-      if (always || !options->quiet) fmt::print(stderr, "owsim run --resume: {}\n", note);
-    };
-    const RunReport report = simulation.run(run);
-    if (!options->quiet) {
-      fmt::print(stderr,
-                 "{} frames{}, {} pulses in {:.2f} s ({:.0f} pulses/s, {:.2f}× real time, {} "
-                 "threads) → {}\n",
-                 report.frames,
-                 report.first_frame > 0 ? fmt::format(" (resumed at {})", report.first_frame)
-                                        : std::string(),
-                 report.pulses, report.wall_s, report.pulses_per_s, report.realtime_factor,
-                 report.threads, report.directory.string());
+    if (started_by_mpi_launcher()) {
+      run_in_mpi_job([&](Communicator& comm) { run_flight(*options, &comm); });
+    } else {
+      run_flight(*options, nullptr);
     }
   });
 }

@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "cli/commands.hpp"
+#include "distributed/communicator.hpp"
 #include "geometry/error.hpp"
 #include "owsim/version.hpp"
 
@@ -27,6 +28,8 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
+  } catch (const owsim::ReportedElsewhere&) {
+    return 1;  // process 0 of the MPI job said why
   } catch (const owsim::Error& e) {
     std::cerr << "owsim: " << e.what() << '\n';
     return 1;

@@ -21,3 +21,7 @@ endif()
 # and fails without them; its pkg-config file is complete, so use that.
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(OpenImageIO REQUIRED IMPORTED_TARGET GLOBAL OpenImageIO)
+
+# MPI (Debian's OpenMPI) is optional: with it, libowsim_mpi.so is built and `mpirun … owsim` runs
+# distributed (distributed/); without it everything else builds and owsim runs on one machine.
+find_package(MPI COMPONENTS C)

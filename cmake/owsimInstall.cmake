@@ -11,6 +11,9 @@ install(TARGETS owsim owsim_geometry owsim_sensor owsim_engine owsim_io owsim_io
         INCLUDES DESTINATION include/owsim)
 install(TARGETS owsim_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(TARGETS owsim_png LIBRARY DESTINATION ${OWSIM_MODULE_INSTALL_DIR})
+if(TARGET owsim_mpi)
+  install(TARGETS owsim_mpi LIBRARY DESTINATION ${OWSIM_MODULE_INSTALL_DIR})
+endif()
 install(FILES ${CMAKE_CURRENT_BINARY_DIR}/generated/owsim/version.hpp DESTINATION include/owsim/owsim)
 install(EXPORT owsimTargets NAMESPACE owsim:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/owsim)
 

@@ -15,9 +15,8 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// What makes a run's output bytes (io/run/run_checkpoint.hpp `run`): owsim's version, the
-// scenario's text and the files it reads, and the options that change bytes. Not the thread count,
-// which changes none.
+}  // namespace
+
 nlohmann::json run_fingerprint(const FlightSetup& setup, const SimulationOptions& simulation,
                                const std::string& source_hash, const RunOptions& options) {
   nlohmann::json run = {
@@ -45,8 +44,6 @@ nlohmann::json run_fingerprint(const FlightSetup& setup, const SimulationOptions
   return run;
 }
 
-// The checkpoint a resumed run continues from, compared with this run; std::nullopt (and a
-// notice) if the folder has none.
 std::optional<RunCheckpoint> checkpoint_to_resume(const FlightOutputOptions& output_options,
                                                   std::int64_t frames, const RunOptions& options) {
   const std::filesystem::path path = run_checkpoint_path(output_options.directory);
@@ -70,8 +67,6 @@ std::optional<RunCheckpoint> checkpoint_to_resume(const FlightOutputOptions& out
   return checkpoint;
 }
 
-}  // namespace
-
 FlightOutputOptions flight_output_options(const FlightSetup& setup,
                                           const std::optional<std::filesystem::path>& out,
                                           const std::set<OutputKind>& outputs) {
@@ -84,9 +79,21 @@ FlightOutputOptions flight_output_options(const FlightSetup& setup,
   return output_options;
 }
 
-void simulate_frames(const FrameSimulator& simulator, const FlightSetup& setup,
-                     const FlightRange& range, int threads, FlightOutputs& outputs,
-                     const std::function<void(std::int64_t)>& frame_done) {
+FlightOutputOptions run_output_options(const FlightSetup& setup, const nlohmann::json& fingerprint,
+                                       const RunOptions& options) {
+  if (fingerprint.is_null() && options.resume) {
+    throw Error(setup.scenario.name +
+                ": resume: a scenario built in code keeps no checkpoint; open it from a file or "
+                "from YAML text to resume its runs");
+  }
+  FlightOutputOptions output_options = flight_output_options(setup, options.out, options.outputs);
+  output_options.checkpoint_run = fingerprint;
+  return output_options;
+}
+
+void encode_frames(const FrameSimulator& simulator, const FlightSetup& setup,
+                   const FlightRange& range, int threads, const FrameEncoder& encoder,
+                   const std::function<void(const FrameView&, const FrameEncoding&)>& sink) {
   // Each frame is itself simulated in parallel, so one frame per thread keeps every core busy;
   // more frames in flight only add their buffers (4.1 MB each on the corridor: pulses, rays and
   // returns) to what competes with the scene for the cache. `owsim bench` on the corridor with 2
@@ -102,23 +109,33 @@ void simulate_frames(const FrameSimulator& simulator, const FlightSetup& setup,
   // tally are encoded block by block while the simulation has the block's pulses and returns in
   // cache; the rest (points, HELLAS header) once the frame is whole.
   std::vector<FrameEncoding> encodings(static_cast<std::size_t>(frames_in_flight));
-  for (FrameEncoding& encoding : encodings) outputs.size_encoding(encoding);
-  std::int64_t done = 0;
+  for (FrameEncoding& encoding : encodings) encoder.size_encoding(encoding);
   run_flight(
       simulator, setup.trajectory, range, frames_in_flight,
       [&](const FrameResult& frame, int begin, int end) {
-        outputs.encode_pulses(frame.view(), begin, end,
+        encoder.encode_pulses(frame.view(), begin, end,
                               encodings[static_cast<std::size_t>(frame.buffer)]);
       },
       [&](const FrameResult& frame) {
-        outputs.finish_encoding(frame.view(), setup.trajectory.pose_at(frame.pulses.front().time_s),
+        encoder.finish_encoding(frame.view(),
+                                setup.trajectory.pose_at(frame.pulses.front().time_s),
                                 encodings[static_cast<std::size_t>(frame.buffer)]);
       },
       [&](const FrameResult& frame) {
-        outputs.add_frame(frame.view(), encodings[static_cast<std::size_t>(frame.buffer)]);
-        ++done;
-        if (frame_done) frame_done(done);
+        sink(frame.view(), encodings[static_cast<std::size_t>(frame.buffer)]);
       });
+}
+
+void simulate_frames(const FrameSimulator& simulator, const FlightSetup& setup,
+                     const FlightRange& range, int threads, FlightOutputs& outputs,
+                     const std::function<void(std::int64_t)>& frame_done) {
+  std::int64_t done = 0;
+  encode_frames(simulator, setup, range, threads, outputs.encoder(),
+                [&](const FrameView& frame, const FrameEncoding& encoding) {
+                  outputs.add_frame(frame, encoding);
+                  ++done;
+                  if (frame_done) frame_done(done);
+                });
 }
 
 RunReport run_flight_outputs(const FlightSetup& setup, const SimulationOptions& simulation,
@@ -126,21 +143,16 @@ RunReport run_flight_outputs(const FlightSetup& setup, const SimulationOptions& 
                              int threads) {
   const Scenario& scenario = setup.scenario;
   const std::int64_t frames = setup.frames;
-  FlightOutputOptions output_options = flight_output_options(setup, options.out, options.outputs);
-  if (!source_hash.empty()) {
-    output_options.checkpoint_run = run_fingerprint(setup, simulation, source_hash, options);
-  } else if (options.resume) {
-    throw Error(scenario.name +
-                ": resume: a scenario built in code keeps no checkpoint; open it from a file or "
-                "from YAML text to resume its runs");
-  }
+  const FlightOutputOptions output_options = run_output_options(
+      setup, source_hash.empty() ? nlohmann::json()
+                                 : run_fingerprint(setup, simulation, source_hash, options),
+      options);
   std::optional<RunCheckpoint> checkpoint;
   if (options.resume) checkpoint = checkpoint_to_resume(output_options, frames, options);
   FlightOutputs outputs(output_options, setup.scene, scenario.scan, setup.local_frame,
                         checkpoint ? &*checkpoint : nullptr);
   const std::int64_t first = outputs.frames_done();
 
-  const auto pulses_per_frame = static_cast<std::uint64_t>(scenario.scan.pulses_per_frame());
   const auto start = Clock::now();
   simulate_frames(
       setup.simulator, setup, FlightRange{first, frames - first}, threads, outputs,
@@ -150,27 +162,38 @@ RunReport run_flight_outputs(const FlightSetup& setup, const SimulationOptions& 
                                      std::chrono::duration<double>(Clock::now() - start).count()});
       });
   const double wall_s = std::chrono::duration<double>(Clock::now() - start).count();
-
-  RunReport report;
-  report.directory = output_options.directory;
-  report.frames = frames;
-  report.first_frame = first;
-  report.pulses = static_cast<std::uint64_t>(frames) * pulses_per_frame;
-  report.wall_s = wall_s;
-  const auto simulated =
-      static_cast<double>(static_cast<std::uint64_t>(frames - first) * pulses_per_frame);
-  report.pulses_per_s = wall_s > 0 ? simulated / wall_s : 0.0;
-  report.realtime_factor = report.pulses_per_s / scenario.scan.prf_hz;
-  report.threads = threads;
-
-  outputs.finish({{"scenario", scenario.name},
-                  {"seed", scenario.seed},
-                  {"wall_s", report.wall_s},
-                  {"pulses_per_s", report.pulses_per_s},
-                  {"realtime_factor", report.realtime_factor},
-                  {"threads", threads},
-                  {"version", version_string}});
+  const RunReport report = run_report(setup, output_options.directory, first, wall_s, threads, 1);
+  outputs.finish(run_facts(scenario, report));
   return report;
+}
+
+RunReport run_report(const FlightSetup& setup, const std::filesystem::path& directory,
+                     std::int64_t first_frame, double wall_s, int threads, int processes) {
+  const auto pulses_per_frame = static_cast<std::uint64_t>(setup.scenario.scan.pulses_per_frame());
+  RunReport report;
+  report.directory = directory;
+  report.frames = setup.frames;
+  report.first_frame = first_frame;
+  report.pulses = static_cast<std::uint64_t>(setup.frames) * pulses_per_frame;
+  report.wall_s = wall_s;
+  const auto simulated = static_cast<double>(
+      static_cast<std::uint64_t>(setup.frames - first_frame) * pulses_per_frame);
+  report.pulses_per_s = wall_s > 0 ? simulated / wall_s : 0.0;
+  report.realtime_factor = report.pulses_per_s / setup.scenario.scan.prf_hz;
+  report.threads = threads;
+  report.processes = processes;
+  return report;
+}
+
+nlohmann::json run_facts(const Scenario& scenario, const RunReport& report) {
+  return {{"scenario", scenario.name},
+          {"seed", scenario.seed},
+          {"wall_s", report.wall_s},
+          {"pulses_per_s", report.pulses_per_s},
+          {"realtime_factor", report.realtime_factor},
+          {"threads", report.threads},
+          {"processes", report.processes},
+          {"version", version_string}};
 }
 
 }  // namespace owsim

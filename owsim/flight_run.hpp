@@ -13,6 +13,7 @@
 
 #include "engine/flight_pipeline.hpp"
 #include "io/run/flight_outputs.hpp"
+#include "io/run/run_checkpoint.hpp"
 #include "owsim/flight_setup.hpp"
 
 namespace owsim {
@@ -44,7 +45,8 @@ struct RunReport {
   double wall_s = 0.0;
   double pulses_per_s = 0.0;  // of the frames this run simulated
   double realtime_factor = 0.0;
-  int threads = 0;
+  int threads = 0;    // per process
+  int processes = 1;  // of a distributed run (distributed/)
 };
 
 // The output folder and files of a run: `out` (default out/<scenario name>/), `outputs`, and a
@@ -53,12 +55,48 @@ struct RunReport {
     const FlightSetup& setup, const std::optional<std::filesystem::path>& out,
     const std::set<OutputKind>& outputs);
 
+// What makes a run's output bytes (io/run/run_checkpoint.hpp `run`): owsim's version, the
+// scenario's text (`source_hash`) and the files it reads, and the options that change bytes. Not
+// the thread or process count, which change none.
+[[nodiscard]] nlohmann::json run_fingerprint(const FlightSetup& setup,
+                                             const SimulationOptions& simulation,
+                                             const std::string& source_hash,
+                                             const RunOptions& options);
+
+// flight_output_options of a run with checkpoints by `fingerprint` (run_fingerprint); a null
+// fingerprint (a scenario built in code) keeps none, and throws owsim::Error if options.resume.
+[[nodiscard]] FlightOutputOptions run_output_options(const FlightSetup& setup,
+                                                     const nlohmann::json& fingerprint,
+                                                     const RunOptions& options);
+
+// The checkpoint in the folder of `output_options` that a resumed run of `frames` frames continues
+// from, compared with this run's fingerprint (output_options.checkpoint_run); std::nullopt (and a
+// notice) if the folder has none. Throws owsim::Error naming the file if it is of another run.
+[[nodiscard]] std::optional<RunCheckpoint> checkpoint_to_resume(
+    const FlightOutputOptions& output_options, std::int64_t frames, const RunOptions& options);
+
+// Frames `range` simulated by `simulator` (in parallel on the calling thread's TBB arena, one
+// frame in flight per thread), encoded by `encoder` where they were simulated, and handed to
+// `sink` in frame order, one at a time. An encoding error is thrown, in frame order.
+void encode_frames(const FrameSimulator& simulator, const FlightSetup& setup,
+                   const FlightRange& range, int threads, const FrameEncoder& encoder,
+                   const std::function<void(const FrameView&, const FrameEncoding&)>& sink);
+
 // Frames `range` simulated by `simulator` (in parallel on the calling thread's TBB arena, one
 // frame in flight per thread) and fed to `outputs` in frame order. `frame_done` (may be empty) is
 // told how many frames are done after each one.
 void simulate_frames(const FrameSimulator& simulator, const FlightSetup& setup,
                      const FlightRange& range, int threads, FlightOutputs& outputs,
                      const std::function<void(std::int64_t)>& frame_done = {});
+
+// The report of a run of `setup` that began at `first_frame` (> 0: resumed) and simulated the rest
+// in `wall_s` with `processes` × `threads` workers.
+[[nodiscard]] RunReport run_report(const FlightSetup& setup, const std::filesystem::path& directory,
+                                   std::int64_t first_frame, double wall_s, int threads,
+                                   int processes);
+// What summary.json says of the run besides its frames (INTERFACE.md): scenario, seed, wall time,
+// pulses/s, real-time factor, threads, processes, owsim version.
+[[nodiscard]] nlohmann::json run_facts(const Scenario& scenario, const RunReport& report);
 
 // A whole run on the calling thread's TBB arena with `threads` workers. `source_hash` identifies
 // the scenario's text (its file or the text it was opened from): it goes into the checkpoint, so

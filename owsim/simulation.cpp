@@ -205,6 +205,15 @@ void Simulation::simulate_frame(std::int64_t frame, std::span<const PoseSample> 
   state_->simulate(frame, trajectory, out);
 }
 
+void Simulation::in_arena(const std::function<void()>& work) const {
+  state_->arena.execute(work);
+}
+
+nlohmann::json Simulation::run_fingerprint(const RunOptions& options) const {
+  if (state_->source_hash.empty()) return nullptr;
+  return owsim::run_fingerprint(state_->setup, state_->options, state_->source_hash, options);
+}
+
 RunReport Simulation::run(const RunOptions& options) const {
   return state_->arena.execute([&] {
     return run_flight_outputs(state_->setup, state_->options, state_->source_hash, options,

@@ -22,6 +22,7 @@
 //  - A Frame is a plain value: read it from any number of threads; refill it from one.
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <span>
 #include <string>
@@ -96,6 +97,12 @@ class Simulation {
 
   // The workers owsim may use at once (SimulationOptions::threads, or every core).
   [[nodiscard]] int threads() const;
+  // Runs `work` on those workers' task arena (where run() simulates), for drivers below the facade
+  // (distributed/).
+  void in_arena(const std::function<void()>& work) const;
+  // What makes a run's output bytes (io/run/run_checkpoint.hpp `run`), as run() keeps it in its
+  // checkpoint; null for a scenario built in code, whose runs keep none.
+  [[nodiscard]] nlohmann::json run_fingerprint(const RunOptions& options) const;
   // Everything the simulation built (scene, trajectory, Embree scene, frame simulator), for tools
   // that go below the facade (`owsim bench`).
   [[nodiscard]] const FlightSetup& setup() const;

@@ -272,10 +272,6 @@ void FlightOutputs::add_placed_frame(const PlacedFrame& frame) {
   resumed_while_finishing_ = false;
 }
 
-void FlightOutputs::add_quicklook_frame(const FrameView& frame) {
-  if (quicklook_) quicklook_->add_frame(frame);
-}
-
 void FlightOutputs::add_map_hits(std::span<const std::uint8_t> map_mask) {
   if (quicklook_) quicklook_->add_map_hits(map_mask);
 }

@@ -94,10 +94,8 @@ class FlightOutputs {
   // bytes as written. Writes no checkpoint: write_checkpoint() does, once every process's bytes
   // are in the files. Throws owsim::Error for a frame out of order.
   void add_placed_frame(const PlacedFrame& frame);
-  // The returns of a frame to the quick-look map (and its range image), for frames whose bytes
-  // are placed; the map's other hits come from the other processes through add_map_hits().
-  void add_quicklook_frame(const FrameView& frame);
-  // ORs another process's map state (QuicklookCheckpoint::map_mask) into the map.
+  // ORs the hits of the frames another Quicklook took (its QuicklookCheckpoint::map_mask) into
+  // the map: a distributed run's processes each draw the hits and range images of their frames.
   void add_map_hits(std::span<const std::uint8_t> map_mask);
   // True when checkpoints are kept and checkpoint_interval_s has passed since the last one.
   [[nodiscard]] bool checkpoint_due() const;
