@@ -33,6 +33,7 @@ enum class RandomPurpose : std::uint32_t {
   irs_error,              // §5 IRS error model, per navigation record
   irs_bias,               // §5 IRS per-flight bias
   forest_layout,          // forest generator, per tree
+  sweep_draw,             // a sweep member's varied value (io/sweep/sweep_file.hpp)
 };
 
 using PhiloxBlock = std::array<std::uint32_t, 4>;

@@ -1,0 +1,115 @@
+#include "io/sweep/sweep_table.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "geometry/error.hpp"
+#include "io/files/atomic_output_file.hpp"
+#include "io/files/csv_cells.hpp"
+#include "io/files/input_file.hpp"
+
+namespace owsim {
+namespace {
+
+constexpr std::array<const char*, 4> kClasses = {"wire", "pole", "tree", "ground"};
+
+struct MemberRow {
+  std::uint64_t frames = 0;
+  std::uint64_t pulses = 0;
+  std::array<std::uint64_t, 4> returns{};
+  std::uint64_t second_returns = 0;
+  std::vector<std::pair<std::size_t, double>> first_seen;  // (wire column, range)
+};
+
+MemberRow read_member(const std::filesystem::path& path,
+                      std::map<std::string, std::size_t>& wire_columns,
+                      std::vector<std::string>& wire_ids) {
+  MemberRow row;
+  try {
+    const nlohmann::json summary =
+        nlohmann::json::parse(read_input_file(path, "member summary", std::uintmax_t{1} << 30));
+    row.frames = summary.at("frames").get<std::uint64_t>();
+    row.pulses = summary.at("pulses").get<std::uint64_t>();
+    for (std::size_t c = 0; c < kClasses.size(); ++c) {
+      row.returns[c] = summary.at("returns").at(kClasses[c]).get<std::uint64_t>();
+    }
+    row.second_returns = summary.at("second_returns").get<std::uint64_t>();
+    for (const nlohmann::json& object : summary.at("objects")) {
+      if (object.at("class") != "wire") continue;
+      const std::string id = object.at("id").get<std::string>();
+      const auto [at, added] = wire_columns.try_emplace(id, wire_ids.size());
+      if (added) wire_ids.push_back(id);
+      const nlohmann::json& range = object.at("first_seen_range_m");
+      if (!range.is_null()) row.first_seen.emplace_back(at->second, range.get<double>());
+    }
+  } catch (const nlohmann::json::exception& e) {
+    throw input_error(path.string(), std::string("not an owsim summary: ") + e.what());
+  }
+  return row;
+}
+
+}  // namespace
+
+std::filesystem::path member_directory(const SweepSpec& spec, const std::filesystem::path& out,
+                                       std::int64_t member) {
+  return out / member_folder_name(spec, member);
+}
+
+void write_sweep_table(const SweepSpec& spec, const std::filesystem::path& out) {
+  std::map<std::string, std::size_t> wire_columns;
+  std::vector<std::string> wire_ids;
+  std::vector<MemberRow> rows;
+  rows.reserve(static_cast<std::size_t>(spec.count));
+  for (std::int64_t m = 0; m < spec.count; ++m) {
+    rows.push_back(
+        read_member(member_directory(spec, out, m) / "summary.json", wire_columns, wire_ids));
+  }
+  std::string text = "member";
+  for (const SweepVariation& variation : spec.vary) {
+    text += ',';
+    text += csv_cell(variation.key);
+  }
+  text += ",frames,pulses";
+  for (const char* name : kClasses) text += std::string(",returns_") + name;
+  text += ",second_returns";
+  for (const std::string& id : wire_ids) {
+    text += ',';
+    text += csv_cell("first_seen_range_m[" + id + "]");
+  }
+  text += '\n';
+  for (std::int64_t m = 0; m < spec.count; ++m) {
+    const MemberRow& row = rows[static_cast<std::size_t>(m)];
+    append_csv_integer(text, m);
+    for (const std::string& value : member_values(spec, m)) {
+      text += ',';
+      text += csv_cell(value);
+    }
+    for (const std::uint64_t count : {row.frames, row.pulses}) {
+      text += ',';
+      append_csv_integer(text, static_cast<std::int64_t>(count));
+    }
+    for (const std::uint64_t count : row.returns) {
+      text += ',';
+      append_csv_integer(text, static_cast<std::int64_t>(count));
+    }
+    text += ',';
+    append_csv_integer(text, static_cast<std::int64_t>(row.second_returns));
+    std::vector<std::optional<double>> ranges(wire_ids.size());
+    for (const auto& [column, range] : row.first_seen) ranges[column] = range;
+    for (const std::optional<double>& range : ranges) {
+      text += ',';
+      if (range) append_csv_fixed(text, *range, 4);
+    }
+    text += '\n';
+  }
+  AtomicOutputFile file(out / "sweep.csv");
+  file.write(text);
+  file.commit();
+}
+
+}  // namespace owsim
