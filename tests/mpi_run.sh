@@ -1,0 +1,60 @@
+#!/bin/sh
+# `mpirun -np N owsim run` against one process (issue 18): every output byte-identical for
+# N = 1, 2, 3 (MilOWS with every output, HELLAS words), a job killed mid-flight resumed by another
+# number of processes to the same bytes, and bad input said in one line.
+#   mpi_run.sh OWSIM SOURCE_DIR WORK_DIR
+set -eu
+owsim=$1
+source=$2
+work=$3
+mpirun="${MPIRUN:-mpirun} --allow-run-as-root --oversubscribe --bind-to none"
+same="/usr/bin/python3 $source/tests/same_outputs.py"
+rm -rf "$work"
+mkdir -p "$work"
+cd "$work"
+sed 's/model: milows/model: hellas/' "$source/examples/corridor.yaml" > hellas.yaml
+
+# 50 frames with 8 a block: N = 3 runs two full rounds and a last one only process 0 has frames in.
+"$owsim" run "$source/examples/corridor.yaml" --frames 50 --threads 1 --out ref --quiet
+"$owsim" run hellas.yaml --frames 30 --threads 1 --outputs d64,summary --out ref_hellas --quiet
+for n in 1 2 3; do
+  $mpirun -np $n "$owsim" run "$source/examples/corridor.yaml" --frames 50 --threads 1 \
+    --out mpi$n --quiet
+  $same ref mpi$n
+  $mpirun -np $n "$owsim" run hellas.yaml --frames 30 --threads 1 --outputs d64,summary \
+    --out hellas$n --quiet
+  $same ref_hellas hellas$n
+done
+grep -q '"processes": 3' mpi3/summary.json
+
+# A process killed after the first checkpoint ends the job; --resume with 3 processes completes it.
+"$owsim" run "$source/examples/corridor.yaml" --threads 2 --out ref_full --quiet
+$mpirun -np 2 "$owsim" run "$source/examples/corridor.yaml" --threads 1 --out killed --quiet \
+  > killed.log 2>&1 &
+job=$!
+tries=0
+while [ ! -f killed/.owsim-resume.json ]; do
+  tries=$((tries + 1))
+  if [ $tries -gt 600 ]; then echo "FAIL: no checkpoint after 60 s"; exit 1; fi
+  sleep 0.1
+done
+victim=$(pgrep -n -f "owsim run .*--out killed")
+kill -9 "$victim"
+if wait $job; then echo "FAIL: the job succeeded although a process was killed"; exit 1; fi
+if [ -f killed/flight.d64 ] || [ -f killed/summary.json ]; then
+  echo "FAIL: a killed job left a file under its final name"; exit 1
+fi
+$mpirun -np 3 "$owsim" run "$source/examples/corridor.yaml" --threads 1 --out killed --resume \
+  2> resumed.log
+grep -E 'resuming .* at frame [1-9]' resumed.log
+$same ref_full killed
+
+# Bad input: every process meets it, one line says it.
+if $mpirun -np 2 "$owsim" run "$source/examples/corridor.yaml" --frames 300 --out bad \
+     > bad.log 2>&1; then
+  echo "FAIL: a bad --frames ran"; exit 1
+fi
+lines=$(grep -c '^owsim:' bad.log)
+if [ "$lines" -ne 1 ]; then echo "FAIL: $lines error lines"; cat bad.log; exit 1; fi
+grep '^owsim:.*only [0-9]* frames fit' bad.log
+echo "mpi_run: ok"

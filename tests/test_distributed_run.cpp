@@ -1,0 +1,170 @@
+// The distributed driver with one process (distributed/distributed_run.hpp, sweep_run.hpp): the
+// placement path — bytes written at scanned offsets, frames' facts replayed at process 0 — gives
+// every output of Simulation::run byte for byte, resumes a checkpoint of a one-process run, and
+// a one-process sweep writes every member and sweep.csv. Runs without MPI and under the
+// sanitizers; tests/mpi_run.sh and mpi_sweep.sh check 1, 2 and 3 processes through mpirun.
+#include "distributed/distributed_run.hpp"
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <set>
+
+#include "distributed/sweep_run.hpp"
+#include "io/run/run_checkpoint.hpp"
+#include "tests/cli_runner.hpp"
+
+namespace owsim {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kCorridor = fs::path(OWSIM_SOURCE_DIR) / "examples" / "corridor.yaml";
+
+std::set<fs::path> files_under(const fs::path& root) {
+  std::set<fs::path> files;
+  for (const auto& entry : fs::recursive_directory_iterator(root)) {
+    if (entry.is_regular_file()) files.insert(fs::relative(entry.path(), root));
+  }
+  return files;
+}
+
+nlohmann::json summary_without_run_facts(const fs::path& folder) {
+  nlohmann::json summary = nlohmann::json::parse(test::read_whole_file(folder / "summary.json"));
+  for (const char* fact : {"wall_s", "pulses_per_s", "realtime_factor", "threads", "processes"}) {
+    EXPECT_TRUE(summary.contains(fact)) << fact;
+    summary.erase(fact);
+  }
+  return summary;
+}
+
+void expect_same_outputs(const fs::path& a, const fs::path& b) {
+  const std::set<fs::path> files = files_under(a);
+  ASSERT_EQ(files, files_under(b));
+  EXPECT_GE(files.size(), 8u);
+  for (const fs::path& file : files) {
+    if (file == "summary.json") continue;
+    EXPECT_TRUE(test::read_whole_file(a / file) == test::read_whole_file(b / file))
+        << file << " differs";
+  }
+  EXPECT_EQ(summary_without_run_facts(a), summary_without_run_facts(b));
+}
+
+Simulation corridor(std::int64_t frames) {
+  SimulationOptions options;
+  options.frames = frames;
+  options.threads = 2;
+  return Simulation::open(kCorridor, options);
+}
+
+TEST(DistributedRun, OneProcessWritesTheBytesOfARun) {
+  test::TempDir work;
+  const Simulation simulation = corridor(21);
+  RunOptions run;
+  run.out = work.path() / "run";
+  static_cast<void>(simulation.run(run));
+  std::unique_ptr<Communicator> comm = single_process_communicator();
+  RunOptions placed = run;
+  placed.out = work.path() / "placed";
+  DistributedRunOptions blocks;
+  blocks.frames_per_block = 4;  // five full blocks and one of a frame
+  const RunReport report = run_distributed(*comm, simulation, placed, blocks);
+  EXPECT_EQ(report.frames, 21);
+  EXPECT_EQ(report.processes, 1);
+  expect_same_outputs(work.path() / "run", work.path() / "placed");
+}
+
+TEST(DistributedRun, ResumesTheCheckpointOfAOneProcessRun) {
+  test::TempDir work;
+  const Simulation simulation = corridor(30);
+  RunOptions run;
+  run.out = work.path() / "run";
+  static_cast<void>(simulation.run(run));
+
+  // A run stopped after frame 11 by its progress callback leaves its temporaries and checkpoint
+  // only if one was written: write one at every frame.
+  RunOptions stopped;
+  stopped.out = work.path() / "resumed";
+  FlightOutputOptions output_options =
+      run_output_options(simulation.setup(), simulation.run_fingerprint(stopped), stopped);
+  output_options.checkpoint_interval_s = 0;
+  {
+    FlightOutputs outputs(output_options, simulation.setup().scene,
+                          simulation.setup().scenario.scan, simulation.setup().local_frame);
+    simulation.in_arena([&] {
+      simulate_frames(simulation.setup().simulator, simulation.setup(), FlightRange{0, 12}, 2,
+                      outputs);
+    });
+    // Keep what a killed process keeps: the temporaries and the checkpoint (no destructor ran).
+    for (const auto& entry : fs::directory_iterator(stopped.out.value())) {
+      if (entry.path().extension() == ".partial" || entry.path().filename().string()[0] == '.') {
+        fs::copy(entry.path(), work.path() / entry.path().filename());
+      }
+    }
+  }
+  for (const auto& entry : fs::directory_iterator(work.path())) {
+    if (entry.is_regular_file()) {
+      fs::rename(entry.path(), stopped.out.value() / entry.path().filename());
+    }
+  }
+  ASSERT_TRUE(read_run_checkpoint(run_checkpoint_path(stopped.out.value())));
+
+  std::unique_ptr<Communicator> comm = single_process_communicator();
+  stopped.resume = true;
+  std::string notice;
+  stopped.notice = [&](std::string_view note) { notice = note; };
+  const RunReport report = run_distributed(*comm, simulation, stopped);
+  EXPECT_EQ(report.first_frame, 12) << notice;
+  expect_same_outputs(work.path() / "run", work.path() / "resumed");
+}
+
+TEST(DistributedSweep, OneProcessRunsEveryMemberAndWritesTheTable) {
+  test::TempDir work;
+  const fs::path sweep_file = work.path() / "sweep.yaml";
+  std::ofstream(sweep_file) << "base: " << kCorridor.string() << "\n"
+                            << "count: 3\nseed: 5\noutputs: d64\n"
+                            << "vary:\n  trajectory.duration_s: {values: [2, 4, 3]}\n"
+                            << "  seed: {member: true}\n";
+  const SweepSpec spec = read_sweep_file(sweep_file);
+  std::unique_ptr<Communicator> comm = single_process_communicator();
+  SweepRunOptions options;
+  options.out = work.path() / "out";
+  options.threads = 2;
+  const SweepReport report = run_sweep(*comm, spec, options);
+  EXPECT_EQ(report.ran, 3);
+  EXPECT_EQ(report.skipped, 0);
+  const std::string table = test::read_whole_file(options.out / "sweep.csv");
+  std::istringstream lines(table);
+  std::string header;
+  std::getline(lines, header);
+  EXPECT_TRUE(header.starts_with("member,trajectory.duration_s,seed,frames,pulses,returns_wire"))
+      << header;
+  for (int m = 0; m < 3; ++m) {
+    // Each member is the run of its own scenario: its summary says its frames and seed.
+    const nlohmann::json summary = nlohmann::json::parse(
+        test::read_whole_file(options.out / std::to_string(m) / "summary.json"));
+    EXPECT_EQ(summary["seed"], m);
+    std::string row;
+    std::getline(lines, row);
+    const int frames = summary["frames"].get<int>();
+    EXPECT_TRUE(row.starts_with(std::to_string(m) + "," + std::vector<std::string>{"2", "4", "3"}[m] +
+                                "," + std::to_string(m) + "," + std::to_string(frames) + ","))
+        << row;
+    EXPECT_TRUE(fs::exists(options.out / std::to_string(m) / "flight.d64"));
+  }
+
+  // Resumed: complete members are skipped, a missing one is run again to the same bytes.
+  const std::string words = test::read_whole_file(options.out / "1" / "flight.d64");
+  fs::remove(options.out / "1" / "summary.json");
+  fs::remove(options.out / "1" / "flight.d64");
+  options.resume = true;
+  const SweepReport resumed = run_sweep(*comm, spec, options);
+  EXPECT_EQ(resumed.ran, 1);
+  EXPECT_EQ(resumed.skipped, 2);
+  EXPECT_TRUE(test::read_whole_file(options.out / "1" / "flight.d64") == words);
+  EXPECT_EQ(test::read_whole_file(options.out / "sweep.csv"), table);
+}
+
+}  // namespace
+}  // namespace owsim
