@@ -19,12 +19,12 @@
 
 namespace owsim {
 
-// A file every process writes into at explicit offsets (collective: MPI-IO).
+// A file every process writes into at explicit offsets (MPI-IO), opened and closed by all together.
 class SharedFile {
  public:
   virtual ~SharedFile() = default;
-  // Every process its own bytes at its own offset, in one collective call (any may have none).
-  virtual void write_at_all(std::uint64_t offset, std::span<const unsigned char> bytes) = 0;
+  // This process's bytes at `offset` (not collective: each process writes its own range).
+  virtual void write_at(std::uint64_t offset, std::span<const unsigned char> bytes) = 0;
   // Every process's bytes so far handed to the file system (collective).
   virtual void sync() = 0;
   // Collective; after it the bytes are visible to every process that opens the file.
@@ -38,8 +38,15 @@ class Communicator {
   [[nodiscard]] virtual int size() const = 0;
   // The processes of the job on this process's machine, which share its cores.
   [[nodiscard]] virtual int local_size() const = 0;
+  // Whether a thread other than the one that made the communicator may make calls (one thread at
+  // a time): MPI_THREAD_MULTIPLE granted.
+  [[nodiscard]] virtual bool any_thread_may_call() const = 0;
 
   virtual void barrier() = 0;
+  // A barrier whose waiting sleeps (polling every fraction of a millisecond) instead of spinning:
+  // a process that is early leaves its core to the work of others (its own threads, or the other
+  // processes on its machine).
+  virtual void sleeping_barrier() = 0;
   // For each value: the sum of that value over the processes ranked before this one.
   [[nodiscard]] virtual std::vector<std::uint64_t> exclusive_sum(
       std::span<const std::uint64_t> values) = 0;

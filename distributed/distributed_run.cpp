@@ -203,8 +203,8 @@ RunReport run_distributed(Communicator& comm, const Simulation& simulation,
   for (std::int64_t next = start.first_frame; next < frames;) {
     const std::int64_t round_frames = std::min(frames - next, per_block * comm.size());
     const std::int64_t mine_first = next + comm.rank() * per_block;
-    const std::int64_t mine = std::clamp<std::int64_t>(next + round_frames - mine_first, 0,
-                                                       per_block);
+    const std::int64_t mine =
+        std::clamp<std::int64_t>(next + round_frames - mine_first, 0, per_block);
     block.clear();
     if (mine > 0) {
       simulation.in_arena([&] {
@@ -216,14 +216,17 @@ RunReport run_distributed(Communicator& comm, const Simulation& simulation,
       });
     }
     // Each process's bytes after everything before them: the earlier rounds' and, in this
-    // round, the lower ranks' (whose frames come first).
+    // round, the lower ranks' (whose frames come first). Each process's part of an output is one
+    // contiguous range of up to megabytes, so each writes its own (MPI_File_write_at): collective
+    // buffering would only shuffle the bytes between processes first.
+    comm.sleeping_barrier();  // wait for the slowest process without taking a core from others
     const PartSizes sizes = block.sizes();
     const std::vector<std::uint64_t> offsets = comm.exclusive_sum(sizes);
     PartSizes totals = sizes;
     comm.sum(totals);
     for (std::size_t p = 0; p < kParts; ++p) {
       if (!files[p]) continue;
-      files[p]->write_at_all(file_bytes[p] + offsets[p], block.bytes[p]);
+      files[p]->write_at(file_bytes[p] + offsets[p], block.bytes[p]);
       file_bytes[p] += totals[p];
     }
     const std::vector<std::string> placed = comm.gather(block.placed_frames, kRoot);

@@ -14,7 +14,9 @@ constexpr int kAnswerTag = 7002;
 
 MemberDispenser::MemberDispenser(Communicator& comm, std::int64_t count)
     : comm_(comm), count_(count) {
-  if (comm_.rank() == 0 && comm_.size() > 1) answering_ = std::thread([this] { answer_requests(); });
+  if (comm_.rank() == 0 && comm_.size() > 1 && comm_.any_thread_may_call()) {
+    answering_ = std::thread([this] { answer_requests(); });
+  }
 }
 
 MemberDispenser::~MemberDispenser() {
@@ -30,6 +32,10 @@ MemberDispenser::~MemberDispenser() {
 
 std::optional<std::int64_t> MemberDispenser::next() {
   std::int64_t member = 0;
+  if (comm_.rank() == 0 && comm_.size() > 1 && !comm_.any_thread_may_call()) {
+    answer_requests();  // an MPI without threads: process 0 only hands out
+    return std::nullopt;
+  }
   if (comm_.rank() == 0) {
     member = next_.fetch_add(1);
   } else {

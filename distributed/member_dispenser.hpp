@@ -3,7 +3,7 @@
 // a fixed split would leave processes idle). Process 0 keeps the count: a thread of its own
 // answers the others' requests (polling every millisecond, so it takes no core from the members
 // being run) while process 0 takes members from the same count itself. Without MPI the count is
-// a local one. Which process runs which member varies from run to run; nothing else depends on it.
+// a local one. With an MPI that does not allow threads, process 0 only hands out. Which process runs which member varies from run to run; nothing else depends on it.
 #include <atomic>
 #include <cstdint>
 #include <optional>

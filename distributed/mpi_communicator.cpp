@@ -45,9 +45,9 @@ class MpiFile final : public SharedFile {
   MpiFile(const MpiFile&) = delete;
   MpiFile& operator=(const MpiFile&) = delete;
 
-  void write_at_all(std::uint64_t offset, std::span<const unsigned char> bytes) override {
-    check(mpi_, mpi_.file_write_at_all(file_, offset, bytes.data(), bytes.size()),
-          "write_at_all");
+  void write_at(std::uint64_t offset, std::span<const unsigned char> bytes) override {
+    check(mpi_, mpi_.file_write_at(file_, offset, bytes.data(), bytes.size()),
+          "write_at");
   }
   void sync() override { check(mpi_, mpi_.file_sync(file_), "file sync"); }
   void close() override {
@@ -67,6 +67,7 @@ class MpiJob final : public Communicator {
   explicit MpiJob(const owsim_mpi_table& mpi) : mpi_(mpi) {
     int threads_ok = 0;
     check(mpi_, mpi_.init(&rank_, &size_, &local_size_, &threads_ok), "init");
+    any_thread_may_call_ = threads_ok != 0;
   }
   ~MpiJob() override { mpi_.finalize(); }
   MpiJob(const MpiJob&) = delete;
@@ -75,7 +76,12 @@ class MpiJob final : public Communicator {
   [[nodiscard]] int rank() const override { return rank_; }
   [[nodiscard]] int size() const override { return size_; }
   [[nodiscard]] int local_size() const override { return local_size_; }
+  [[nodiscard]] bool any_thread_may_call() const override { return any_thread_may_call_; }
   void barrier() override { check(mpi_, mpi_.barrier(), "barrier"); }
+  void sleeping_barrier() override {
+    constexpr int kPollMicroseconds = 200;
+    check(mpi_, mpi_.sleeping_barrier(kPollMicroseconds), "barrier");
+  }
   std::vector<std::uint64_t> exclusive_sum(std::span<const std::uint64_t> values) override {
     std::vector<std::uint64_t> out(values.size());
     check(mpi_, mpi_.exclusive_sum(values.data(), out.data(), static_cast<int>(values.size())),
@@ -140,6 +146,7 @@ class MpiJob final : public Communicator {
   int rank_ = 0;
   int size_ = 1;
   int local_size_ = 1;
+  bool any_thread_may_call_ = false;
 };
 
 }  // namespace

@@ -23,7 +23,7 @@ class LocalFile final : public SharedFile {
   LocalFile(const LocalFile&) = delete;
   LocalFile& operator=(const LocalFile&) = delete;
 
-  void write_at_all(std::uint64_t offset, std::span<const unsigned char> bytes) override {
+  void write_at(std::uint64_t offset, std::span<const unsigned char> bytes) override {
     while (!bytes.empty()) {
       const ssize_t n = ::pwrite(fd_, bytes.data(), bytes.size(), static_cast<off_t>(offset));
       if (n < 0 && errno == EINTR) continue;
@@ -54,7 +54,9 @@ class SingleProcess final : public Communicator {
   [[nodiscard]] int rank() const override { return 0; }
   [[nodiscard]] int size() const override { return 1; }
   [[nodiscard]] int local_size() const override { return 1; }
+  [[nodiscard]] bool any_thread_may_call() const override { return true; }
   void barrier() override {}
+  void sleeping_barrier() override {}
   std::vector<std::uint64_t> exclusive_sum(std::span<const std::uint64_t> values) override {
     return std::vector<std::uint64_t>(values.size(), 0);
   }

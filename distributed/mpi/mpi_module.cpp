@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <climits>
+#include <ctime>
 #include <cstring>
 #include <vector>
 
@@ -50,6 +51,18 @@ void error_text(int code, char* text, std::size_t size) {
 }
 
 int barrier() { return MPI_Barrier(MPI_COMM_WORLD); }
+
+int sleeping_barrier(int poll_us) {
+  MPI_Request request;
+  if (int rc = MPI_Ibarrier(MPI_COMM_WORLD, &request); rc != 0) return rc;
+  const timespec pause = {0, static_cast<long>(poll_us) * 1000};
+  for (;;) {
+    int done = 0;
+    if (int rc = MPI_Test(&request, &done, MPI_STATUS_IGNORE); rc != 0) return rc;
+    if (done) return 0;
+    nanosleep(&pause, nullptr);
+  }
+}
 
 int exclusive_sum(const std::uint64_t* in, std::uint64_t* out, int count) {
   int rank = 0;
@@ -129,16 +142,12 @@ int file_open(const char* path, void** file) {
   return 0;
 }
 
-// Collective: every process makes the same number of calls, however many bytes it has.
-int file_write_at_all(void* file, std::uint64_t offset, const void* data, std::size_t size) {
-  std::uint64_t parts = (size + kMaxPart - 1) / kMaxPart;
-  if (int rc = max(&parts, 1); rc != 0) return rc;
+int file_write_at(void* file, std::uint64_t offset, const void* data, std::size_t size) {
   const auto* bytes = static_cast<const char*>(data);
-  for (std::uint64_t k = 0; k < parts; ++k) {
-    const std::size_t begin = std::min<std::size_t>(size, k * kMaxPart);
+  for (std::size_t begin = 0; begin < size; begin += kMaxPart) {
     const int part = static_cast<int>(std::min(kMaxPart, size - begin));
     MPI_Status status;
-    if (int rc = MPI_File_write_at_all(*static_cast<MPI_File*>(file),
+    if (int rc = MPI_File_write_at(*static_cast<MPI_File*>(file),
                                        static_cast<MPI_Offset>(offset + begin), bytes + begin,
                                        part, MPI_BYTE, &status);
         rc != 0) {
@@ -184,6 +193,7 @@ constexpr owsim_mpi_table kTable = {OWSIM_MPI_MODULE_ABI,
                                     error_text,
                                     abort_job,
                                     barrier,
+                                    sleeping_barrier,
                                     exclusive_sum,
                                     sum,
                                     max,
@@ -192,7 +202,7 @@ constexpr owsim_mpi_table kTable = {OWSIM_MPI_MODULE_ABI,
                                     gather_bytes,
                                     reduce_or,
                                     file_open,
-                                    file_write_at_all,
+                                    file_write_at,
                                     file_sync,
                                     file_close,
                                     send,

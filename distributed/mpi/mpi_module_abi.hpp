@@ -8,7 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#define OWSIM_MPI_MODULE_ABI 1
+#define OWSIM_MPI_MODULE_ABI 2
 
 extern "C" {
 struct owsim_mpi_table {
@@ -20,6 +20,8 @@ struct owsim_mpi_table {
   void (*error_text)(int code, char* text, std::size_t size);
   [[noreturn]] void (*abort)(int exit_code);
   int (*barrier)(void);
+  // A barrier that sleeps `poll_us` microseconds between tests instead of spinning.
+  int (*sleeping_barrier)(int poll_us);
   // Over the uint64 values of every process: the exclusive prefix sums, the sums, the maxima.
   int (*exclusive_sum)(const std::uint64_t* in, std::uint64_t* out, int count);
   int (*sum)(std::uint64_t* values, int count);
@@ -30,9 +32,10 @@ struct owsim_mpi_table {
   int (*gather_bytes)(const void* mine, std::size_t size, void* out, const std::uint64_t* counts,
                       int root);
   int (*reduce_or)(std::uint8_t* bytes, std::size_t size, int root);  // in place at root
-  // One file of every process (collective): writes at explicit offsets, collectively.
+  // One file of every process (opened, synced and closed collectively), each process writing its
+  // own bytes at explicit offsets.
   int (*file_open)(const char* path, void** file);
-  int (*file_write_at_all)(void* file, std::uint64_t offset, const void* data, std::size_t size);
+  int (*file_write_at)(void* file, std::uint64_t offset, const void* data, std::size_t size);
   int (*file_sync)(void* file);
   int (*file_close)(void* file);
   // Point to point, one uint64 with a tag; try_receive returns 0 with *received = 0 when nothing
