@@ -11,11 +11,9 @@
 #include "io/files/json_text.hpp"
 #include "io/images/png_image.hpp"
 #include "io/images/quicklook.hpp"
-#include "io/points/frame_points.hpp"
 #include "io/points/las_writer.hpp"
 #include "io/points/ply_writer.hpp"
 #include "io/points/points_csv_writer.hpp"
-#include "io/recording/frame_words.hpp"
 #include "io/recording/word_file.hpp"
 #include "io/run/run_checkpoint.hpp"
 #include "io/trajectory/trajectory_csv_writer.hpp"
@@ -283,8 +281,8 @@ bool FlightOutputs::checkpoint_due() const {
 
 FlightOutputs::PlacedFiles FlightOutputs::placed_files() {
   // A writer's checkpoint hands its bytes to the kernel and says how many the file holds.
-  const auto placed = [](const auto& writer, const WriterCheckpoint& at) {
-    return PlacedFile{AtomicOutputFile::partial_path_for(writer), at.file_bytes};
+  const auto placed = [](const std::filesystem::path& final_path, const WriterCheckpoint& at) {
+    return PlacedFile{AtomicOutputFile::partial_path_for(final_path), at.file_bytes};
   };
   PlacedFiles files;
   const std::filesystem::path& directory = options_.directory;
