@@ -11,6 +11,7 @@
 #include "distributed/placed_frame_bytes.hpp"
 #include "geometry/error.hpp"
 #include "io/files/atomic_output_file.hpp"
+#include "io/files/little_endian.hpp"
 #include "io/images/quicklook.hpp"
 #include "io/run/flight_outputs.hpp"
 
@@ -58,16 +59,14 @@ Start read_start(const std::string& bytes) {
 }
 
 template <typename Word>
-void append_words(const std::vector<Word>& words, std::vector<unsigned char>& out) {
+void append_words(std::span<const Word> words, std::vector<unsigned char>& out) {
   const std::size_t at = out.size();
   out.resize(at + words.size() * sizeof(Word));
   if constexpr (std::endian::native == std::endian::little) {
     std::memcpy(out.data() + at, words.data(), words.size() * sizeof(Word));
   } else {
     for (std::size_t i = 0; i < words.size(); ++i) {
-      for (std::size_t b = 0; b < sizeof(Word); ++b) {
-        out[at + i * sizeof(Word) + b] = static_cast<unsigned char>(words[i] >> (8 * b));
-      }
+      store_little_endian(words[i], out.data() + at + i * sizeof(Word));
     }
   }
 }
@@ -86,10 +85,12 @@ struct Block {
     if (encoding.error) std::rethrow_exception(encoding.error);
     if (encoder.wants(OutputKind::d64)) {
       if (scan.model == SensorModel::milows) {
-        append_words(encoding.milows_words, bytes[kWords]);
+        append_words<std::uint64_t>(encoding.milows_words, bytes[kWords]);
       } else {
-        if (encoding.frame == 0) append_words(std::vector{encoding.hellas_header_word}, bytes[kWords]);
-        append_words(encoding.hellas_words, bytes[kWords]);
+        if (encoding.frame == 0) {
+          append_words<std::uint32_t>({&encoding.hellas_header_word, 1}, bytes[kWords]);
+        }
+        append_words<std::uint32_t>(encoding.hellas_words, bytes[kWords]);
       }
     }
     PlacedFrame placed;

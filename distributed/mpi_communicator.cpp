@@ -32,7 +32,7 @@ void check(const owsim_mpi_table& mpi, int rc, const char* operation) {
 
 class MpiFile final : public SharedFile {
  public:
-  MpiFile(const owsim_mpi_table& mpi, const std::filesystem::path& path) : mpi_(mpi), path_(path) {
+  MpiFile(const owsim_mpi_table& mpi, const std::filesystem::path& path) : mpi_(mpi) {
     const int rc = mpi_.file_open(path.c_str(), &file_);
     if (rc != 0) {
       char text[512];
@@ -58,7 +58,6 @@ class MpiFile final : public SharedFile {
 
  private:
   const owsim_mpi_table& mpi_;
-  std::filesystem::path path_;
   void* file_ = nullptr;
 };
 

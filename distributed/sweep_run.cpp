@@ -23,16 +23,10 @@ namespace {
 using Clock = std::chrono::steady_clock;
 constexpr std::string_view kSweepStateFileName = ".owsim-sweep.json";
 
-std::string hash_of(std::string_view text) {
-  ContentHash hash;
-  hash.add(text.data(), text.size());
-  return hash.hex();
-}
-
 nlohmann::json sweep_state(const SweepSpec& spec) {
   return {{"owsim_version", version_string},
-          {"sweep_file", hash_of(spec.text)},
-          {"base_scenario", hash_of(spec.base_text)}};
+          {"sweep_file", ContentHash::hex_of(spec.text)},
+          {"base_scenario", ContentHash::hex_of(spec.base_text)}};
 }
 
 // Process 0: the output folder made ready; whether complete members may be skipped.

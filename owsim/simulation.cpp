@@ -20,12 +20,6 @@ int worker_count(const SimulationOptions& options) {
   return options.threads > 0 ? options.threads : tbb::info::default_concurrency();
 }
 
-std::string hash_of_text(std::string_view text) {
-  ContentHash hash;
-  hash.add(text.data(), text.size());
-  return hash.hex();
-}
-
 std::string hash_of_file(const std::filesystem::path& path) {
   ContentHash hash;
   hash.add_file(path);
@@ -148,7 +142,7 @@ Simulation Simulation::open(const std::filesystem::path& scenario_file,
 Simulation Simulation::from_yaml(std::string_view yaml, const std::filesystem::path& name,
                                  const SimulationOptions& options) {
   Scenario scenario = load_scenario_text(yaml, name);
-  return Simulation(std::make_unique<State>(std::move(scenario), options, hash_of_text(yaml)));
+  return Simulation(std::make_unique<State>(std::move(scenario), options, ContentHash::hex_of(yaml)));
 }
 
 Simulation Simulation::from_scenario(Scenario scenario, const SimulationOptions& options) {

@@ -43,8 +43,8 @@ void FlightSummary::restore(FlightSummaryCheckpoint from) {
   objects_ = std::move(from.objects);
 }
 
-void FlightSummary::tally(std::span<const Pulse> pulses, std::span<const PulseReturns> returns,
-                          FrameTally& out) const {
+void FlightSummary::tally(std::size_t object_count, std::span<const Pulse> pulses,
+                          std::span<const PulseReturns> returns, FrameTally& out) {
   out.pulses = pulses.size();
   out.returns_by_class.fill(0);
   out.second_returns = 0;
@@ -55,7 +55,7 @@ void FlightSummary::tally(std::span<const Pulse> pulses, std::span<const PulseRe
     for (int r = 0; r < pulse_returns.count; ++r) {
       const Return& ret = pulse_returns.returns[r];
       ++out.returns_by_class[std::min<std::size_t>(ret.surface, 3)];
-      if (ret.object_index >= objects_.size()) continue;  // the ground
+      if (ret.object_index >= object_count) continue;  // the ground
       out.object_hits.push_back({ret.object_index, pulses[k].time_s, ret.true_range_m});
     }
   }

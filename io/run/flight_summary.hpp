@@ -75,9 +75,10 @@ class FlightSummary {
   // One entry per scene object, in object-index order (conductors, then cylinders).
   explicit FlightSummary(const Scene& scene);
 
-  // One frame's returns tallied; thread-safe (const).
-  void tally(std::span<const Pulse> pulses, std::span<const PulseReturns> returns,
-             FrameTally& out) const;
+  // One frame's returns tallied, for a scene of `object_count` objects (returns on an index at
+  // or past it are the ground's); any thread.
+  static void tally(std::size_t object_count, std::span<const Pulse> pulses,
+                    std::span<const PulseReturns> returns, FrameTally& out);
   // Adds one frame's tally (frames must come in order).
   void add_frame(std::int64_t frame, const FrameTally& tally);
 

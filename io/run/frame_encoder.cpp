@@ -13,7 +13,10 @@ namespace owsim {
 FrameEncoder::FrameEncoder(const std::filesystem::path& directory,
                            const std::set<OutputKind>& outputs, const Scene& scene,
                            const ScanParams& scan, const LocalFrame& local_frame)
-    : outputs_(outputs), scan_(scan), local_frame_(&local_frame), tally_source_(scene) {
+    : outputs_(outputs),
+      scan_(scan),
+      local_frame_(&local_frame),
+      object_count_(scene.conductors.size() + scene.cylinders.size()) {
   if (wants(OutputKind::points)) {
     csv_.emplace((directory / "points.csv").string(), object_ids(scene));
     LasWriterOptions las;
@@ -55,7 +58,7 @@ void FrameEncoder::encode_pulses(const FrameView& frame, int begin, int end,
   const int end_line = (end + fibers - 1) / fibers;
   for (int line = first_line + 1; line < end_line; ++line) {
     FrameEncoding::LineBlock& empty = out.line_blocks[static_cast<std::size_t>(line)];
-    tally_source_.tally({}, {}, empty.tally);
+    FlightSummary::tally(object_count_, {}, {}, empty.tally);
     empty.error = nullptr;
   }
   FrameEncoding::LineBlock& block = out.line_blocks[static_cast<std::size_t>(first_line)];
@@ -65,8 +68,8 @@ void FrameEncoder::encode_pulses(const FrameView& frame, int begin, int end,
     const auto count = static_cast<std::size_t>(end - begin);
     // The tally feeds summary.json alone: without that output, the block's tally stays empty.
     const std::size_t tallied = wants(OutputKind::summary) ? count : 0;
-    tally_source_.tally(frame.pulses.subspan(first, tallied),
-                        frame.returns.subspan(first, tallied), block.tally);
+    FlightSummary::tally(object_count_, frame.pulses.subspan(first, tallied),
+                         frame.returns.subspan(first, tallied), block.tally);
     if (words) {
       const auto block_pulses = frame.pulses.subspan(first, count);
       const auto block_returns = frame.returns.subspan(first, count);
@@ -89,7 +92,7 @@ void FrameEncoder::finish_encoding(const FrameView& frame, const Pose& frame_sta
   out.frame_start = frame_start;
   out.error = nullptr;
   // The blocks' parts in line order: the first error, and the tally as one pass would give it.
-  tally_source_.tally({}, {}, out.tally);
+  FlightSummary::tally(object_count_, {}, {}, out.tally);
   for (const FrameEncoding::LineBlock& block : out.line_blocks) {
     if (block.error && !out.error) out.error = block.error;
     out.tally.append(block.tally);

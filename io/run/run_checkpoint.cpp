@@ -343,6 +343,12 @@ void ContentHash::add_file(const std::filesystem::path& path) {
   if (failed) throw input_error(path.string(), "read error");
 }
 
+std::string ContentHash::hex_of(std::string_view text) {
+  ContentHash hash;
+  hash.add(text.data(), text.size());
+  return hash.hex();
+}
+
 std::string ContentHash::hex() const {
   std::array<char, 17> text{};
   std::snprintf(text.data(), text.size(), "%016llx", static_cast<unsigned long long>(state_));

@@ -73,6 +73,8 @@ class ContentHash {
   void add_file(const std::filesystem::path& path);
   // 16 hex digits.
   [[nodiscard]] std::string hex() const;
+  // hex() of `text` alone.
+  [[nodiscard]] static std::string hex_of(std::string_view text);
 
  private:
   std::uint64_t state_ = 0xcbf29ce484222325u;  // the FNV-1a 64-bit offset basis
