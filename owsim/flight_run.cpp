@@ -49,6 +49,13 @@ std::optional<RunCheckpoint> checkpoint_to_resume(const FlightOutputOptions& out
   const std::filesystem::path path = run_checkpoint_path(output_options.directory);
   std::optional<RunCheckpoint> checkpoint = read_run_checkpoint(path);
   if (!checkpoint) {
+    const std::filesystem::path json_path =
+        output_options.directory / kJsonRunCheckpointFileName;
+    if (std::filesystem::exists(json_path)) {
+      throw input_error(json_path.string(),
+                        "a JSON checkpoint of an earlier owsim, which this one cannot resume; "
+                        "run without --resume to start over");
+    }
     if (options.notice) {
       options.notice("no checkpoint " + path.string() + ": starting from frame 0");
     }
@@ -140,7 +147,8 @@ void simulate_frames(const FrameSimulator& simulator, const FlightSetup& setup,
 
 RunReport run_flight_outputs(const FlightSetup& setup, const SimulationOptions& simulation,
                              const std::string& source_hash, const RunOptions& options,
-                             int threads) {
+                             int threads, double build_s) {
+  const auto opening = Clock::now();
   const Scenario& scenario = setup.scenario;
   const std::int64_t frames = setup.frames;
   const FlightOutputOptions output_options = run_output_options(
@@ -162,7 +170,8 @@ RunReport run_flight_outputs(const FlightSetup& setup, const SimulationOptions& 
                                      std::chrono::duration<double>(Clock::now() - start).count()});
       });
   const double wall_s = std::chrono::duration<double>(Clock::now() - start).count();
-  const RunReport report = run_report(setup, output_options.directory, first, wall_s, threads, 1);
+  RunReport report = run_report(setup, output_options.directory, first, wall_s, threads, 1);
+  report.setup_s = build_s + std::chrono::duration<double>(start - opening).count();
   outputs.finish(run_facts(scenario, report));
   return report;
 }
@@ -188,6 +197,7 @@ RunReport run_report(const FlightSetup& setup, const std::filesystem::path& dire
 nlohmann::json run_facts(const Scenario& scenario, const RunReport& report) {
   return {{"scenario", scenario.name},
           {"seed", scenario.seed},
+          {"setup_s", report.setup_s},
           {"wall_s", report.wall_s},
           {"pulses_per_s", report.pulses_per_s},
           {"realtime_factor", report.realtime_factor},

@@ -33,7 +33,7 @@ $mpirun -np 2 "$owsim" run "$source/examples/corridor.yaml" --threads 1 --out ki
   > killed.log 2>&1 &
 job=$!
 tries=0
-while [ ! -f killed/.owsim-resume.json ]; do
+while [ ! -f killed/.owsim-resume ]; do
   tries=$((tries + 1))
   if [ $tries -gt 600 ]; then echo "FAIL: no checkpoint after 60 s"; exit 1; fi
   sleep 0.1

@@ -25,6 +25,7 @@
 #include "geometry/geodetic_frame.hpp"
 #include "geometry/scene.hpp"
 #include "io/files/atomic_output_file.hpp"
+#include "io/files/binary_record.hpp"
 #include "io/run/flight_outputs.hpp"
 #include "io/run/run_checkpoint.hpp"
 #include "sensor/scan_pattern.hpp"
@@ -79,18 +80,18 @@ RunCheckpoint every_field_set() {
   c.finishing = true;
   c.summary.counts = {7, 142'464, {11, 22, 33, 44}, 5};
   ObjectTruth seen;
-  seen.id = "hv-1/3";
-  seen.surface = SurfaceClass::wire;
   seen.returns = 12;
   seen.frames_seen = 3;
   seen.first_seen_s = 0.1 + 0.2;  // 0.30000000000000004: needs all 17 digits
   seen.first_seen_range_m = 1.0 / 3.0;
   seen.min_range_m = std::numeric_limits<double>::denorm_min();
   seen.last_frame_seen = 6;
-  ObjectTruth unseen;
-  unseen.id = "tree \"t1\", north";
-  unseen.surface = SurfaceClass::tree;
-  c.summary.objects = {seen, unseen};
+  ObjectTruth later = seen;
+  later.returns = std::numeric_limits<std::uint64_t>::max();
+  later.first_seen_s = -0.0;
+  later.last_frame_seen = std::numeric_limits<std::int64_t>::max();
+  c.summary.object_count = 1'000'000;  // seen in this order: 999999 first, then 3
+  c.summary.seen = {{999'999, later}, {3, seen}};
   c.words = WriterCheckpoint{8 * 142'464, 142'464};
   c.points_csv = WriterCheckpoint{123'456'789'012, 987'654};
   LasCheckpoint las;
@@ -118,7 +119,7 @@ RunCheckpoint every_field_set() {
 TEST_F(RunCheckpointTest, EveryValueRoundTripsExactly) {
   const RunCheckpoint written = every_field_set();
   const fs::path path = run_checkpoint_path(dir_);
-  EXPECT_EQ(path, dir_ / ".owsim-resume.json");
+  EXPECT_EQ(path, dir_ / ".owsim-resume");
   write_run_checkpoint(path, written);
   EXPECT_FALSE(fs::exists(AtomicOutputFile::partial_path_for(path)));
   const std::optional<RunCheckpoint> read = read_run_checkpoint(path);
@@ -161,13 +162,27 @@ TEST_F(RunCheckpointTest, DamagedFileIsAOneLineErrorNamingIt) {
     }
     return "";
   };
-  // Cut short; a mask whose runs do not fill the map; another format.
-  std::string mask_damaged = whole;
-  const std::size_t bytes_at = mask_damaged.find("\"map_mask_bytes\": ");
-  ASSERT_NE(bytes_at, std::string::npos);
-  mask_damaged.insert(bytes_at + 18, "1");
+  // Cut short; one byte changed (the checksum refuses it); behind a correct checksum: more seen
+  // objects than the file holds, a body cut inside the map's runs, a byte after the last state;
+  // another format version; the JSON checkpoint of an earlier owsim.
+  const std::string body = whole.substr(20);
+  std::string flipped = whole;
+  flipped[whole.size() / 2] ^= 0x10;
+  BinaryRecordWriter run;
+  run.put_bytes("{}");
+  BinaryRecordWriter counts;
+  for (int i = 0; i < 9; ++i) counts.put(std::uint64_t{0});
+  counts.put(std::uint64_t{1} << 40);  // seen objects
+  std::string too_many = run.bytes();
+  too_many += std::string(8 + 1, '\0');  // frames done, finishing
+  too_many += counts.bytes();
+  std::string old_version = whole;
+  old_version[8] = 2;
   for (const std::string& text :
-       {whole.substr(0, whole.size() / 2), mask_damaged, std::string("{\"format\": \"x\"}")}) {
+       {whole.substr(0, whole.size() / 2), flipped, checkpoint_file_bytes(too_many),
+        checkpoint_file_bytes(body.substr(0, body.size() - 20)), checkpoint_file_bytes(body + "x"),
+        old_version,
+        std::string("owsim run checkpoint fnv1a64 0123456789abcdef\n{\"format\": \"x\"}")}) {
     const std::string message = message_for(text);
     EXPECT_EQ(message.rfind(path.string() + ": damaged checkpoint", 0), 0u) << message;
     EXPECT_EQ(message.find('\n'), std::string::npos) << message;
@@ -359,14 +374,17 @@ TEST_F(FlightOutputsResume, ARefusedResumeLeavesEveryFileAsItWas) {
 }
 
 TEST_F(FlightOutputsResume, ACheckpointChangedInOneDigitIsRefused) {
-  // Still valid JSON with a plausible count, so only the checksum can tell: resuming it had given
-  // exit 0 and a spliced row in points.csv.
+  // A plausible frame count, so only the checksum can tell: resuming it had given exit 0 and a
+  // spliced row in points.csv. frames_done follows the header (20 bytes) and the run's JSON text
+  // (a u64 length, then the text).
   kill_after(3);
   const fs::path path = run_checkpoint_path(dir_ / "interrupted");
   std::string text = content(path);
-  const std::size_t at = text.find("\"frames_done\": 3");
-  ASSERT_NE(at, std::string::npos);
-  text[at + 15] = '2';
+  BinaryRecordReader header(std::string_view(text).substr(20));
+  const std::size_t at = 20 + 8 + header.get<std::uint64_t>();
+  ASSERT_LT(at, text.size());
+  ASSERT_EQ(text[at], '\x03');
+  text[at] = '\x02';
   std::ofstream(path, std::ios::binary | std::ios::trunc) << text;
   try {
     (void)read_run_checkpoint(path);

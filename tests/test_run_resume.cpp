@@ -77,7 +77,7 @@ void expect_same_bytes(const fs::path& reference, const fs::path& other) {
 // summary.json without the figures that depend on the wall clock and the thread count.
 nlohmann::json summary_without_timing(const fs::path& path) {
   nlohmann::json summary = nlohmann::json::parse(test::read_whole_file(path));
-  for (const char* key : {"wall_s", "pulses_per_s", "realtime_factor", "threads"}) {
+  for (const char* key : {"setup_s", "wall_s", "pulses_per_s", "realtime_factor", "threads"}) {
     summary.erase(key);
   }
   return summary;
@@ -216,6 +216,27 @@ TEST(RunResume, ResumeWithoutACheckpointStartsFromFrameZero) {
     expect_same_bytes(work / "reference" / name, work / "fresh" / name);
   }
   EXPECT_FALSE(fs::exists(work / "fresh" / "flight.d64.partial"));
+}
+
+// owsim before issue 19 kept a JSON checkpoint, .owsim-resume.json: --resume refuses it with one
+// line and writes nothing; a run without --resume starts over and removes it.
+TEST(RunResume, AJsonCheckpointOfAnEarlierOwsimIsRefusedInOneLine) {
+  const TempDir work("owsim_run_resume");
+  fs::create_directories(work / "old");
+  std::ofstream(work / "old" / ".owsim-resume.json") << "owsim run checkpoint fnv1a64 0\n{}\n";
+  const std::vector<std::string> base = {"run",     corridor(),  "--frames", "3",   "--quiet",
+                                         "--threads", "2",       "--out",    "old"};
+  std::vector<std::string> resume = base;
+  resume.push_back("--resume");
+  const test::CliResult refused = run_cli(resume, work.path());
+  EXPECT_EQ(refused.exit_status, 1);
+  EXPECT_EQ(refused.err,
+            "owsim: old/.owsim-resume.json: a JSON checkpoint of an earlier owsim, which this one "
+            "cannot resume; run without --resume to start over\n");
+  EXPECT_FALSE(fs::exists(work / "old" / "flight.d64"));
+  ASSERT_EQ(run_cli(base, work.path()).exit_status, 0);
+  EXPECT_TRUE(fs::exists(work / "old" / "flight.d64"));
+  EXPECT_FALSE(fs::exists(work / "old" / ".owsim-resume.json"));
 }
 
 }  // namespace

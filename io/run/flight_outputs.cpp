@@ -8,7 +8,6 @@
 
 #include "geometry/error.hpp"
 #include "io/files/atomic_output_file.hpp"
-#include "io/files/json_text.hpp"
 #include "io/images/png_image.hpp"
 #include "io/images/quicklook.hpp"
 #include "io/points/las_writer.hpp"
@@ -16,6 +15,7 @@
 #include "io/points/points_csv_writer.hpp"
 #include "io/recording/word_file.hpp"
 #include "io/run/run_checkpoint.hpp"
+#include "io/run/summary_json.hpp"
 #include "io/trajectory/trajectory_csv_writer.hpp"
 
 namespace owsim {
@@ -88,7 +88,10 @@ FlightOutputs::FlightOutputs(const FlightOutputOptions& options, const Scene& sc
     : options_(options),
       scan_(scan),
       local_frame_(&local_frame),
-      summary_(scene),
+      scene_(&scene),
+      summary_(options.outputs.contains(OutputKind::summary)
+                   ? scene.conductors.size() + scene.cylinders.size()
+                   : 0),
       encoder_(options_.directory, options_.outputs, scene, scan, local_frame),
       checkpoint_path_(run_checkpoint_path(options_.directory)),
       last_checkpoint_(Clock::now()) {
@@ -101,10 +104,15 @@ FlightOutputs::FlightOutputs(const FlightOutputOptions& options, const Scene& sc
                      "cannot create the output folder: " + error.message());
   }
   // A checkpoint of another run must not outlive the temporaries this run is about to truncate.
-  if (checkpointing() && resume_from == nullptr &&
-      (!std::filesystem::remove(checkpoint_path_, error) && error)) {
-    throw input_error(checkpoint_path_.string(),
-                      "cannot remove an earlier run's checkpoint: " + error.message());
+  // An earlier owsim's JSON checkpoint goes too.
+  if (checkpointing() && resume_from == nullptr) {
+    for (const std::filesystem::path& path :
+         {checkpoint_path_, options_.directory / kJsonRunCheckpointFileName}) {
+      if (!std::filesystem::remove(path, error) && error) {
+        throw input_error(path.string(),
+                          "cannot remove an earlier run's checkpoint: " + error.message());
+      }
+    }
   }
   open_outputs(scene, resume_from);
 }
@@ -323,12 +331,9 @@ void FlightOutputs::finish(const nlohmann::json& run_facts) {
   if (trajectory_) trajectory_->finish();
   if (quicklook_) quicklook_->finish();
   if (wants(OutputKind::summary)) {
-    nlohmann::json summary = run_facts;
-    summary.update(summary_.to_json());
-    summary["pulses_per_frame"] = scan_.pulses_per_frame();
-    AtomicOutputFile file(options_.directory / "summary.json");
-    file.write(json_text(summary, 2) + "\n");
-    file.commit();
+    nlohmann::json facts = run_facts;
+    facts["pulses_per_frame"] = scan_.pulses_per_frame();
+    write_summary_json(options_.directory / "summary.json", summary_, *scene_, facts);
   }
   finished_ = true;
   if (checkpointing()) {

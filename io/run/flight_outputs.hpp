@@ -57,7 +57,8 @@ class FlightOutputs {
   // first removes a checkpoint left in the folder. With `resume_from` (the folder's checkpoint,
   // of the same run: the caller has compared its fingerprint), continues the outputs from it
   // instead: frames_done() is then its frame count. Throws owsim::Error if a temporary it names is
-  // missing or shorter, or its state does not fit the outputs.
+  // missing or shorter, or its state does not fit the outputs. `scene` and `local_frame` must
+  // outlive the outputs.
   FlightOutputs(const FlightOutputOptions& options, const Scene& scene, const ScanParams& scan,
                 const LocalFrame& local_frame, const RunCheckpoint* resume_from = nullptr);
   // Without finish() (an exception): the temporaries go, and the checkpoint with them.
@@ -117,7 +118,8 @@ class FlightOutputs {
   // removes the checkpoint.
   void finish(const nlohmann::json& run_facts);
 
-  // Tallies returns only when summary.json is among the outputs (frames are always counted).
+  // Tallies returns and keeps per-object state only when summary.json is among the outputs
+  // (frames are always counted).
   [[nodiscard]] const FlightSummary& summary() const { return summary_; }
   // The frames in the outputs: the next frame add_frame() takes.
   [[nodiscard]] std::int64_t frames_done() const { return frames_done_; }
@@ -133,6 +135,7 @@ class FlightOutputs {
   FlightOutputOptions options_;
   ScanParams scan_;
   const LocalFrame* local_frame_;
+  const Scene* scene_;
   FlightSummary summary_;
   std::unique_ptr<WordSink> words_;
   std::unique_ptr<PointsCsvWriter> points_csv_;

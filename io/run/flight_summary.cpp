@@ -7,40 +7,34 @@
 #include "geometry/error.hpp"
 
 namespace owsim {
-namespace {
 
-nlohmann::json optional_number(const std::optional<double>& value) {
-  return value ? nlohmann::json(*value) : nlohmann::json(nullptr);
+FlightSummaryCheckpoint FlightSummary::checkpoint() const {
+  FlightSummaryCheckpoint out{counts_, objects_.size(), {}};
+  out.seen.reserve(first_seen_order_.size());
+  for (const std::uint32_t index : first_seen_order_) out.seen.push_back({index, objects_[index]});
+  return out;
 }
 
-}  // namespace
-
-FlightSummary::FlightSummary(const Scene& scene) {
-  objects_.reserve(scene.conductors.size() + scene.cylinders.size());
-  for (const Conductor& conductor : scene.conductors) {
-    ObjectTruth& truth = objects_.emplace_back();
-    truth.id = conductor.id;
-    truth.surface = SurfaceClass::wire;
+void FlightSummary::restore(const FlightSummaryCheckpoint& from) {
+  if (from.object_count != objects_.size()) {
+    throw Error("summary: cannot resume: the checkpoint tallies " +
+                std::to_string(from.object_count) + " objects, this run " +
+                std::to_string(objects_.size()));
   }
-  for (const Cylinder& cylinder : scene.cylinders) {
-    ObjectTruth& truth = objects_.emplace_back();
-    truth.id = cylinder.id;
-    truth.surface = cylinder.surface;
-  }
-}
-
-void FlightSummary::restore(FlightSummaryCheckpoint from) {
-  bool same_objects = from.objects.size() == objects_.size();
-  for (std::size_t i = 0; same_objects && i < objects_.size(); ++i) {
-    same_objects =
-        from.objects[i].id == objects_[i].id && from.objects[i].surface == objects_[i].surface;
-  }
-  if (!same_objects) {
-    throw Error("summary: cannot resume: the checkpoint's " + std::to_string(from.objects.size()) +
-                " objects are not the scene's " + std::to_string(objects_.size()));
+  std::vector<ObjectTruth> objects(objects_.size());
+  std::vector<std::uint32_t> order;
+  order.reserve(from.seen.size());
+  for (const SeenObject& seen : from.seen) {
+    if (seen.index >= objects.size() || !seen.truth.seen() || objects[seen.index].seen()) {
+      throw Error("summary: cannot resume: object " + std::to_string(seen.index) +
+                  " is out of range, unseen or given twice");
+    }
+    objects[seen.index] = seen.truth;
+    order.push_back(seen.index);
   }
   counts_ = from.counts;
-  objects_ = std::move(from.objects);
+  objects_ = std::move(objects);
+  first_seen_order_ = std::move(order);
 }
 
 void FlightSummary::tally(std::size_t object_count, std::span<const Pulse> pulses,
@@ -69,40 +63,24 @@ void FlightSummary::add_frame(std::int64_t frame, const FrameTally& tally) {
     counts_.returns_by_class[c] += tally.returns_by_class[c];
   }
   for (const FrameTally::ObjectHit& hit : tally.object_hits) {
+    if (hit.object >= objects_.size()) {
+      throw Error("summary: a return on object " + std::to_string(hit.object) + " of " +
+                  std::to_string(objects_.size()));
+    }
     ObjectTruth& truth = objects_[hit.object];
+    if (!truth.seen()) {
+      first_seen_order_.push_back(hit.object);
+      truth.first_seen_s = hit.time_s;
+      truth.first_seen_range_m = hit.true_range_m;
+      truth.min_range_m = hit.true_range_m;
+    }
     ++truth.returns;
     if (truth.last_frame_seen != frame) {
       ++truth.frames_seen;
       truth.last_frame_seen = frame;
     }
-    if (!truth.first_seen_s) {
-      truth.first_seen_s = hit.time_s;
-      truth.first_seen_range_m = hit.true_range_m;
-    }
-    truth.min_range_m = std::min(truth.min_range_m.value_or(hit.true_range_m), hit.true_range_m);
+    truth.min_range_m = std::min(truth.min_range_m, hit.true_range_m);
   }
-}
-
-nlohmann::json FlightSummary::to_json() const {
-  nlohmann::json objects = nlohmann::json::array();
-  for (const ObjectTruth& truth : objects_) {
-    objects.push_back({{"id", truth.id},
-                       {"class", std::string(to_string(truth.surface))},
-                       {"returns", truth.returns},
-                       {"frames_seen", truth.frames_seen},
-                       {"first_seen_s", optional_number(truth.first_seen_s)},
-                       {"first_seen_range_m", optional_number(truth.first_seen_range_m)},
-                       {"min_range_m", optional_number(truth.min_range_m)}});
-  }
-  return {{"frames", counts_.frames},
-          {"pulses", counts_.pulses},
-          {"returns",
-           {{"wire", returns_of(SurfaceClass::wire)},
-            {"pole", returns_of(SurfaceClass::pole)},
-            {"tree", returns_of(SurfaceClass::tree)},
-            {"ground", returns_of(SurfaceClass::ground)}}},
-          {"second_returns", counts_.second_returns},
-          {"objects", objects}};
 }
 
 }  // namespace owsim

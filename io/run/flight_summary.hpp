@@ -1,14 +1,12 @@
 #pragma once
-// summary.json of `owsim run` (INTERFACE.md): totals of the flight and, per scenario object (each
-// conductor on its own), when and from how far the sensor first saw it — the ground truth that
-// obstacle-detection software is scored against. Fed one frame at a time, in frame order;
-// checkpoint() and restore() carry the totals across an interrupted run (`owsim run --resume`).
+// What summary.json of `owsim run` reports (INTERFACE.md; written by io/run/summary_json.hpp):
+// totals of the flight and, per scenario object (each conductor on its own), when and from how far
+// the sensor first saw it — the ground truth that obstacle-detection software is scored against.
+// Fed one frame at a time, in frame order; checkpoint() and restore() carry the totals across an
+// interrupted run (`owsim run --resume`).
 #include <array>
 #include <cstdint>
-#include <nlohmann/json.hpp>
-#include <optional>
 #include <span>
-#include <string>
 #include <vector>
 
 #include "geometry/scene.hpp"
@@ -17,15 +15,18 @@
 
 namespace owsim {
 
+// What the frames so far showed of one scene object: plain numbers, 48 bytes an object, so a
+// forest of a million trees costs 48 MB here and nothing else per object. Its id and class are the
+// scene's (object_ids(), summary_json.hpp). The ranges and first time mean something only once
+// seen() (they are 0 before).
 struct ObjectTruth {
-  std::string id;
-  SurfaceClass surface = SurfaceClass::wire;
   std::uint64_t returns = 0;
   std::uint64_t frames_seen = 0;
-  std::optional<double> first_seen_s;
-  std::optional<double> first_seen_range_m;  // the true range of the first return on it
-  std::optional<double> min_range_m;
+  double first_seen_s = 0.0;
+  double first_seen_range_m = 0.0;  // the true range of the first return on it
+  double min_range_m = 0.0;
   std::int64_t last_frame_seen = -1;
+  [[nodiscard]] bool seen() const { return returns > 0; }
   friend bool operator==(const ObjectTruth&, const ObjectTruth&) = default;
 };
 
@@ -38,10 +39,20 @@ struct FlightCounts {
   friend bool operator==(const FlightCounts&, const FlightCounts&) = default;
 };
 
-// Everything a FlightSummary has accumulated.
+// An object with returns, by its object index.
+struct SeenObject {
+  std::uint32_t index = 0;
+  ObjectTruth truth;
+  friend bool operator==(const SeenObject&, const SeenObject&) = default;
+};
+
+// Everything a FlightSummary has accumulated: the totals, how many objects it tallies, and the
+// objects seen so far in the order they were first seen — never the unseen ones, so a checkpoint
+// costs nothing for the trees the flight never came near.
 struct FlightSummaryCheckpoint {
   FlightCounts counts;
-  std::vector<ObjectTruth> objects;
+  std::uint64_t object_count = 0;
+  std::vector<SeenObject> seen;
   friend bool operator==(const FlightSummaryCheckpoint&, const FlightSummaryCheckpoint&) = default;
 };
 
@@ -72,17 +83,20 @@ struct FrameTally {
 
 class FlightSummary {
  public:
-  // One entry per scene object, in object-index order (conductors, then cylinders).
-  explicit FlightSummary(const Scene& scene);
+  // Tallies `object_count` objects (the scene's conductors, then cylinders, in object-index
+  // order); 0 when summary.json is not written, so no per-object state is kept at all.
+  explicit FlightSummary(std::size_t object_count) : objects_(object_count) {}
 
   // One frame's returns tallied, for a scene of `object_count` objects (returns on an index at
   // or past it are the ground's); any thread.
   static void tally(std::size_t object_count, std::span<const Pulse> pulses,
                     std::span<const PulseReturns> returns, FrameTally& out);
-  // Adds one frame's tally (frames must come in order).
+  // Adds one frame's tally (frames must come in order). Throws owsim::Error for a hit on an
+  // object index this summary does not tally.
   void add_frame(std::int64_t frame, const FrameTally& tally);
 
-  [[nodiscard]] const std::vector<ObjectTruth>& objects() const { return objects_; }
+  [[nodiscard]] std::span<const ObjectTruth> objects() const { return objects_; }
+  [[nodiscard]] const FlightCounts& counts() const { return counts_; }
   [[nodiscard]] std::uint64_t frames() const { return counts_.frames; }
   [[nodiscard]] std::uint64_t pulses() const { return counts_.pulses; }
   [[nodiscard]] std::uint64_t returns_of(SurfaceClass surface) const {
@@ -90,17 +104,15 @@ class FlightSummary {
   }
   [[nodiscard]] std::uint64_t second_returns() const { return counts_.second_returns; }
 
-  [[nodiscard]] FlightSummaryCheckpoint checkpoint() const { return {counts_, objects_}; }
-  // Continues from the state of a summary of the same scene. Throws owsim::Error if the objects'
-  // ids or classes differ from this scene's.
-  void restore(FlightSummaryCheckpoint from);
-
-  // Everything of INTERFACE.md's summary.json that the frames determine; the caller adds run
-  // facts (scenario, seed, wall time, threads, version).
-  [[nodiscard]] nlohmann::json to_json() const;
+  // Costs the objects seen so far, not the objects tallied.
+  [[nodiscard]] FlightSummaryCheckpoint checkpoint() const;
+  // Continues from the state of a summary of the same scene and outputs. Throws owsim::Error if
+  // it tallied another number of objects, or names an object twice or out of range.
+  void restore(const FlightSummaryCheckpoint& from);
 
  private:
   std::vector<ObjectTruth> objects_;
+  std::vector<std::uint32_t> first_seen_order_;  // the indices of the seen objects
   FlightCounts counts_;
 };
 

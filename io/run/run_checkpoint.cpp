@@ -4,13 +4,12 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <system_error>
 #include <vector>
 
 #include "geometry/error.hpp"
 #include "io/files/atomic_output_file.hpp"
+#include "io/files/binary_record.hpp"
 #include "io/files/input_file.hpp"
 #include "io/files/json_text.hpp"
 
@@ -19,37 +18,47 @@ namespace {
 
 using nlohmann::json;
 
-constexpr std::string_view kFormat = "owsim run checkpoint";
-constexpr std::string_view kChecksumPrefix = "owsim run checkpoint fnv1a64 ";
-constexpr std::string_view kBase64 =
-    "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+constexpr std::string_view kMagic = "OWSIMRUN";  // then the version, the checksum and the body
+constexpr std::size_t kHeaderBytes = kMagic.size() + 4 + 8;
+constexpr std::size_t kSeenObjectBytes = 4 + 8 + 8 + 8 + 8 + 8 + 8;
+constexpr std::size_t kLargestMapMask = std::size_t{1} << 28;
 
-// ---- the quick-look map mask: runs of equal bytes (value, LEB128 length), in base64 ----
+// Which of a checkpoint's optional states follow, one bit each.
+enum StateBit : std::uint8_t {
+  kWords = 1u << 0,
+  kPointsCsv = 1u << 1,
+  kPointsLas = 1u << 2,
+  kPointsPly = 1u << 3,
+  kTrajectory = 1u << 4,
+  kQuicklook = 1u << 5,
+};
 
-std::vector<std::uint8_t> run_length_coded(const std::vector<std::uint8_t>& bytes) {
-  std::vector<std::uint8_t> code;
+// ---- the quick-look map mask: runs of equal bytes (value, LEB128 length) ----
+
+std::string run_length_coded(const std::vector<std::uint8_t>& bytes) {
+  std::string code;
   for (std::size_t i = 0; i < bytes.size();) {
     std::size_t end = i + 1;
     while (end < bytes.size() && bytes[end] == bytes[i]) ++end;
-    code.push_back(bytes[i]);
+    code.push_back(static_cast<char>(bytes[i]));
     for (std::uint64_t run = end - i; run != 0; run >>= 7) {
-      code.push_back(static_cast<std::uint8_t>((run & 0x7Fu) | (run > 0x7Fu ? 0x80u : 0u)));
+      code.push_back(static_cast<char>((run & 0x7Fu) | (run > 0x7Fu ? 0x80u : 0u)));
     }
     i = end;
   }
   return code;
 }
 
-std::vector<std::uint8_t> run_length_decoded(const std::vector<std::uint8_t>& code,
-                                             std::size_t size) {
+std::vector<std::uint8_t> run_length_decoded(std::string_view code, std::size_t size) {
+  if (size > kLargestMapMask) throw Error("a map larger than any quick-look map");
   std::vector<std::uint8_t> bytes;
   bytes.reserve(size);
   for (std::size_t i = 0; i < code.size();) {
-    const std::uint8_t value = code[i++];
+    const auto value = static_cast<std::uint8_t>(code[i++]);
     std::uint64_t run = 0;
     for (int shift = 0;; shift += 7) {
       if (i == code.size() || shift > 56) throw Error("a run length is cut off");
-      const std::uint8_t part = code[i++];
+      const auto part = static_cast<std::uint8_t>(code[i++]);
       run |= std::uint64_t{part & 0x7Fu} << shift;
       if ((part & 0x80u) == 0) break;
     }
@@ -60,169 +69,103 @@ std::vector<std::uint8_t> run_length_decoded(const std::vector<std::uint8_t>& co
   return bytes;
 }
 
-std::string base64(const std::vector<std::uint8_t>& bytes) {
-  std::string text;
-  text.reserve((bytes.size() + 2) / 3 * 4);
-  for (std::size_t i = 0; i < bytes.size(); i += 3) {
-    const std::size_t left = bytes.size() - i;
-    const std::uint32_t group = std::uint32_t{bytes[i]} << 16 |
-                                (left > 1 ? std::uint32_t{bytes[i + 1]} << 8 : 0u) |
-                                (left > 2 ? std::uint32_t{bytes[i + 2]} : 0u);
-    text += kBase64[(group >> 18) & 63u];
-    text += kBase64[(group >> 12) & 63u];
-    text += left > 1 ? kBase64[(group >> 6) & 63u] : '=';
-    text += left > 2 ? kBase64[group & 63u] : '=';
-  }
-  return text;
+// ---- the states, in the order of the file ----
+
+void put_writer(BinaryRecordWriter& out, const WriterCheckpoint& writer) {
+  out.put(writer.file_bytes);
+  out.put(writer.records);
 }
 
-std::vector<std::uint8_t> from_base64(std::string_view text) {
-  if (text.size() % 4 != 0) throw Error("base64 text of a length that is no multiple of 4");
-  std::vector<std::uint8_t> bytes;
-  bytes.reserve(text.size() / 4 * 3);
-  for (std::size_t i = 0; i < text.size(); i += 4) {
-    std::uint32_t group = 0;
-    int padding = 0;
-    for (std::size_t k = 0; k < 4; ++k) {
-      const char c = text[i + k];
-      std::uint32_t sextet = 0;
-      if (c == '=' && i + 4 == text.size() && k >= 2) {
-        ++padding;
-      } else {
-        const std::size_t at = kBase64.find(c);
-        if (at == std::string_view::npos || padding > 0) throw Error("not base64 text");
-        sextet = static_cast<std::uint32_t>(at);
-      }
-      group = group << 6 | sextet;
-    }
-    bytes.push_back(static_cast<std::uint8_t>(group >> 16));
-    if (padding < 2) bytes.push_back(static_cast<std::uint8_t>(group >> 8));
-    if (padding < 1) bytes.push_back(static_cast<std::uint8_t>(group));
-  }
-  return bytes;
+WriterCheckpoint writer_of(BinaryRecordReader& in) {
+  WriterCheckpoint writer;
+  writer.file_bytes = in.get<std::uint64_t>();
+  writer.records = in.get<std::uint64_t>();
+  return writer;
 }
 
-// ---- values ----
-
-json optional_number(const std::optional<double>& value) {
-  return value ? json(*value) : json(nullptr);
-}
-
-std::optional<double> optional_number_of(const json& value) {
-  if (value.is_null()) return std::nullopt;
-  return value.get<double>();
-}
-
-SurfaceClass surface_of(const std::string& name) {
-  for (const SurfaceClass surface :
-       {SurfaceClass::wire, SurfaceClass::pole, SurfaceClass::tree, SurfaceClass::ground}) {
-    if (name == to_string(surface)) return surface;
-  }
-  throw Error("unknown class '" + name + "'");
-}
-
-json writer_json(const WriterCheckpoint& writer) {
-  return {{"bytes", writer.file_bytes}, {"records", writer.records}};
-}
-
-WriterCheckpoint writer_of(const json& value) {
-  return {value.at("bytes").get<std::uint64_t>(), value.at("records").get<std::uint64_t>()};
-}
-
-json summary_json(const FlightSummaryCheckpoint& summary) {
-  json objects = json::array();
-  for (const ObjectTruth& truth : summary.objects) {
-    objects.push_back({{"id", truth.id},
-                       {"class", std::string(to_string(truth.surface))},
-                       {"returns", truth.returns},
-                       {"frames_seen", truth.frames_seen},
-                       {"first_seen_s", optional_number(truth.first_seen_s)},
-                       {"first_seen_range_m", optional_number(truth.first_seen_range_m)},
-                       {"min_range_m", optional_number(truth.min_range_m)},
-                       {"last_frame_seen", truth.last_frame_seen}});
-  }
+void put_summary(BinaryRecordWriter& out, const FlightSummaryCheckpoint& summary) {
   const FlightCounts& counts = summary.counts;
-  return {{"frames", counts.frames},
-          {"pulses", counts.pulses},
-          {"returns_by_class", counts.returns_by_class},
-          {"second_returns", counts.second_returns},
-          {"objects", objects}};
+  out.put(counts.frames);
+  out.put(counts.pulses);
+  for (const std::uint64_t returns : counts.returns_by_class) out.put(returns);
+  out.put(counts.second_returns);
+  out.put(summary.object_count);
+  out.put(static_cast<std::uint64_t>(summary.seen.size()));
+  for (const SeenObject& seen : summary.seen) {
+    out.put(seen.index);
+    out.put(seen.truth.returns);
+    out.put(seen.truth.frames_seen);
+    out.put(seen.truth.first_seen_s);
+    out.put(seen.truth.first_seen_range_m);
+    out.put(seen.truth.min_range_m);
+    out.put(seen.truth.last_frame_seen);
+  }
 }
 
-FlightSummaryCheckpoint summary_of(const json& value) {
+FlightSummaryCheckpoint summary_of(BinaryRecordReader& in) {
   FlightSummaryCheckpoint summary;
-  summary.counts.frames = value.at("frames").get<std::uint64_t>();
-  summary.counts.pulses = value.at("pulses").get<std::uint64_t>();
-  summary.counts.returns_by_class =
-      value.at("returns_by_class").get<std::array<std::uint64_t, 4>>();
-  summary.counts.second_returns = value.at("second_returns").get<std::uint64_t>();
-  for (const json& object : value.at("objects")) {
-    ObjectTruth& truth = summary.objects.emplace_back();
-    truth.id = object.at("id").get<std::string>();
-    truth.surface = surface_of(object.at("class").get<std::string>());
-    truth.returns = object.at("returns").get<std::uint64_t>();
-    truth.frames_seen = object.at("frames_seen").get<std::uint64_t>();
-    truth.first_seen_s = optional_number_of(object.at("first_seen_s"));
-    truth.first_seen_range_m = optional_number_of(object.at("first_seen_range_m"));
-    truth.min_range_m = optional_number_of(object.at("min_range_m"));
-    truth.last_frame_seen = object.at("last_frame_seen").get<std::int64_t>();
+  FlightCounts& counts = summary.counts;
+  counts.frames = in.get<std::uint64_t>();
+  counts.pulses = in.get<std::uint64_t>();
+  for (std::uint64_t& returns : counts.returns_by_class) returns = in.get<std::uint64_t>();
+  counts.second_returns = in.get<std::uint64_t>();
+  summary.object_count = in.get<std::uint64_t>();
+  const auto seen = in.get<std::uint64_t>();
+  if (seen > in.left() / kSeenObjectBytes) throw Error("more seen objects than the file holds");
+  summary.seen.resize(static_cast<std::size_t>(seen));
+  for (SeenObject& object : summary.seen) {
+    object.index = in.get<std::uint32_t>();
+    object.truth.returns = in.get<std::uint64_t>();
+    object.truth.frames_seen = in.get<std::uint64_t>();
+    object.truth.first_seen_s = in.get_double();
+    object.truth.first_seen_range_m = in.get_double();
+    object.truth.min_range_m = in.get_double();
+    object.truth.last_frame_seen = in.get<std::int64_t>();
   }
   return summary;
 }
 
-json las_json(const LasCheckpoint& las) {
-  json value = writer_json(las.file);
-  value["points_by_return"] = las.points_by_return;
-  value["min_record"] = las.min_record;
-  value["max_record"] = las.max_record;
-  value["creation_day_of_year"] = las.creation_date.day_of_year;
-  value["creation_year"] = las.creation_date.year;
-  return value;
+void put_las(BinaryRecordWriter& out, const LasCheckpoint& las) {
+  put_writer(out, las.file);
+  for (const std::uint64_t points : las.points_by_return) out.put(points);
+  for (const std::int32_t value : las.min_record) out.put(value);
+  for (const std::int32_t value : las.max_record) out.put(value);
+  out.put(static_cast<std::int32_t>(las.creation_date.day_of_year));
+  out.put(static_cast<std::int32_t>(las.creation_date.year));
 }
 
-LasCheckpoint las_of(const json& value) {
+LasCheckpoint las_of(BinaryRecordReader& in) {
   LasCheckpoint las;
-  las.file = writer_of(value);
-  las.points_by_return = value.at("points_by_return").get<std::array<std::uint64_t, 15>>();
-  las.min_record = value.at("min_record").get<std::array<std::int32_t, 3>>();
-  las.max_record = value.at("max_record").get<std::array<std::int32_t, 3>>();
-  las.creation_date.day_of_year = value.at("creation_day_of_year").get<int>();
-  las.creation_date.year = value.at("creation_year").get<int>();
+  las.file = writer_of(in);
+  for (std::uint64_t& points : las.points_by_return) points = in.get<std::uint64_t>();
+  for (std::int32_t& value : las.min_record) value = in.get<std::int32_t>();
+  for (std::int32_t& value : las.max_record) value = in.get<std::int32_t>();
+  las.creation_date.day_of_year = in.get<std::int32_t>();
+  las.creation_date.year = in.get<std::int32_t>();
   return las;
 }
 
-json quicklook_json(const QuicklookCheckpoint& quicklook) {
-  json last = nullptr;
+void put_quicklook(BinaryRecordWriter& out, const QuicklookCheckpoint& quicklook) {
+  out.put(static_cast<std::uint64_t>(quicklook.map_mask.size()));
+  out.put_bytes(run_length_coded(quicklook.map_mask));
+  out.put(std::uint8_t{quicklook.last_trajectory_px ? 1u : 0u});
   if (quicklook.last_trajectory_px) {
-    last = {quicklook.last_trajectory_px->x(), quicklook.last_trajectory_px->y()};
+    out.put(quicklook.last_trajectory_px->x());
+    out.put(quicklook.last_trajectory_px->y());
   }
-  return {{"map_mask_bytes", quicklook.map_mask.size()},
-          {"map_mask_runs_base64", base64(run_length_coded(quicklook.map_mask))},
-          {"last_trajectory_px", last}};
 }
 
-QuicklookCheckpoint quicklook_of(const json& value) {
+QuicklookCheckpoint quicklook_of(BinaryRecordReader& in) {
   QuicklookCheckpoint quicklook;
-  quicklook.map_mask =
-      run_length_decoded(from_base64(value.at("map_mask_runs_base64").get<std::string>()),
-                         value.at("map_mask_bytes").get<std::size_t>());
-  const json& last = value.at("last_trajectory_px");
-  if (!last.is_null()) {
-    const auto px = last.get<std::array<double, 2>>();
-    quicklook.last_trajectory_px = Eigen::Vector2d(px[0], px[1]);
+  const auto size = in.get<std::uint64_t>();
+  if (size > kLargestMapMask) throw Error("a map larger than any quick-look map");
+  quicklook.map_mask = run_length_decoded(in.get_bytes(), static_cast<std::size_t>(size));
+  if (in.get<std::uint8_t>() != 0) {
+    const double x = in.get_double();
+    const double y = in.get_double();
+    quicklook.last_trajectory_px = Eigen::Vector2d(x, y);
   }
   return quicklook;
-}
-
-template <typename State, typename ToJson>
-void put_optional(json& out, const char* key, const std::optional<State>& state, ToJson to_json) {
-  if (state) out[key] = to_json(*state);
-}
-
-template <typename State, typename FromJson>
-std::optional<State> optional_of(const json& in, const char* key, FromJson from_json) {
-  if (!in.contains(key)) return std::nullopt;
-  return from_json(in.at(key));
 }
 
 std::string shown(const json& value) {
@@ -239,64 +182,76 @@ std::filesystem::path run_checkpoint_path(const std::filesystem::path& directory
 }
 
 void write_run_checkpoint(const std::filesystem::path& path, const RunCheckpoint& checkpoint) {
-  json out = {{"format", kFormat},
-              {"version", kRunCheckpointVersion},
-              {"run", checkpoint.run},
-              {"frames_done", checkpoint.frames_done},
-              {"finishing", checkpoint.finishing},
-              {"summary", summary_json(checkpoint.summary)}};
-  put_optional(out, "words", checkpoint.words, writer_json);
-  put_optional(out, "points_csv", checkpoint.points_csv, writer_json);
-  put_optional(out, "points_las", checkpoint.points_las, las_json);
-  put_optional(out, "points_ply", checkpoint.points_ply, writer_json);
-  put_optional(out, "trajectory", checkpoint.trajectory, writer_json);
-  put_optional(out, "quicklook", checkpoint.quicklook, quicklook_json);
-  // The first line holds a checksum of everything after it, so a checkpoint changed by hand or
-  // by a damaged disk is refused, not resumed into spliced outputs.
+  BinaryRecordWriter out;
+  out.put_bytes(json_text(checkpoint.run));
+  out.put(checkpoint.frames_done);
+  out.put(std::uint8_t{checkpoint.finishing ? 1u : 0u});
+  put_summary(out, checkpoint.summary);
+  const auto bit = [](bool present, StateBit state) { return present ? state : 0u; };
+  out.put(static_cast<std::uint8_t>(
+      bit(checkpoint.words.has_value(), kWords) | bit(checkpoint.points_csv.has_value(), kPointsCsv) |
+      bit(checkpoint.points_las.has_value(), kPointsLas) |
+      bit(checkpoint.points_ply.has_value(), kPointsPly) |
+      bit(checkpoint.trajectory.has_value(), kTrajectory) |
+      bit(checkpoint.quicklook.has_value(), kQuicklook)));
+  if (checkpoint.words) put_writer(out, *checkpoint.words);
+  if (checkpoint.points_csv) put_writer(out, *checkpoint.points_csv);
+  if (checkpoint.points_las) put_las(out, *checkpoint.points_las);
+  if (checkpoint.points_ply) put_writer(out, *checkpoint.points_ply);
+  if (checkpoint.trajectory) put_writer(out, *checkpoint.trajectory);
+  if (checkpoint.quicklook) put_quicklook(out, *checkpoint.quicklook);
   AtomicOutputFile file(path, {.sync_on_commit = false});
-  file.write(checksummed_checkpoint_text(json_text(out, 1) + "\n"));
+  file.write(checkpoint_file_bytes(out.bytes()));
   file.commit();
 }
 
-std::string checksummed_checkpoint_text(std::string_view body) {
+std::string checkpoint_file_bytes(std::string_view body) {
   ContentHash hash;
   hash.add(body.data(), body.size());
-  return std::string(kChecksumPrefix) + hash.hex() + "\n" + std::string(body);
+  BinaryRecordWriter header;
+  header.put(static_cast<std::uint32_t>(kRunCheckpointVersion));
+  header.put(hash.value());
+  std::string bytes(kMagic);
+  bytes += header.bytes();
+  bytes += body;
+  return bytes;
 }
 
 std::optional<RunCheckpoint> read_run_checkpoint(const std::filesystem::path& path) {
   std::error_code error;
   if (!std::filesystem::exists(path, error)) return std::nullopt;
-  const std::string text = read_input_file(path, "run checkpoint", kMaxCheckpointBytes);
+  const std::string bytes = read_input_file(path, "run checkpoint", kMaxCheckpointBytes);
   try {
-    const std::size_t line_end = text.find('\n');
-    if (!text.starts_with(kChecksumPrefix) || line_end == std::string::npos) {
-      throw Error("no checksum line");
+    if (bytes.size() < kHeaderBytes || !bytes.starts_with(kMagic)) {
+      throw Error("not an owsim run checkpoint");
     }
-    const std::string_view body = std::string_view(text).substr(line_end + 1);
-    ContentHash hash;
-    hash.add(body.data(), body.size());
-    if (text.substr(kChecksumPrefix.size(), line_end - kChecksumPrefix.size()) != hash.hex()) {
-      throw Error("its checksum does not match its content");
-    }
-    const json in = json::parse(body);
-    if (in.at("format") != kFormat || in.at("version") != kRunCheckpointVersion) {
+    BinaryRecordReader header(std::string_view(bytes).substr(kMagic.size(), 12));
+    if (header.get<std::uint32_t>() != kRunCheckpointVersion) {
       throw Error("not a version " + std::to_string(kRunCheckpointVersion) +
                   " checkpoint of this owsim");
     }
+    const std::string_view body = std::string_view(bytes).substr(kHeaderBytes);
+    ContentHash hash;
+    hash.add(body.data(), body.size());
+    if (header.get<std::uint64_t>() != hash.value()) {
+      throw Error("its checksum does not match its content");
+    }
+    BinaryRecordReader in(body);
     RunCheckpoint checkpoint;
-    checkpoint.run = in.at("run");
+    checkpoint.run = json::parse(in.get_bytes());
     if (!checkpoint.run.is_object()) throw Error("'run' is not an object");
-    checkpoint.frames_done = in.at("frames_done").get<std::int64_t>();
+    checkpoint.frames_done = in.get<std::int64_t>();
     if (checkpoint.frames_done < 0) throw Error("negative frames_done");
-    checkpoint.finishing = in.at("finishing").get<bool>();
-    checkpoint.summary = summary_of(in.at("summary"));
-    checkpoint.words = optional_of<WriterCheckpoint>(in, "words", writer_of);
-    checkpoint.points_csv = optional_of<WriterCheckpoint>(in, "points_csv", writer_of);
-    checkpoint.points_las = optional_of<LasCheckpoint>(in, "points_las", las_of);
-    checkpoint.points_ply = optional_of<WriterCheckpoint>(in, "points_ply", writer_of);
-    checkpoint.trajectory = optional_of<WriterCheckpoint>(in, "trajectory", writer_of);
-    checkpoint.quicklook = optional_of<QuicklookCheckpoint>(in, "quicklook", quicklook_of);
+    checkpoint.finishing = in.get<std::uint8_t>() != 0;
+    checkpoint.summary = summary_of(in);
+    const auto states = in.get<std::uint8_t>();
+    if ((states & kWords) != 0) checkpoint.words = writer_of(in);
+    if ((states & kPointsCsv) != 0) checkpoint.points_csv = writer_of(in);
+    if ((states & kPointsLas) != 0) checkpoint.points_las = las_of(in);
+    if ((states & kPointsPly) != 0) checkpoint.points_ply = writer_of(in);
+    if ((states & kTrajectory) != 0) checkpoint.trajectory = writer_of(in);
+    if ((states & kQuicklook) != 0) checkpoint.quicklook = quicklook_of(in);
+    if (in.left() != 0) throw Error("bytes after the last state");
     return checkpoint;
   } catch (const std::exception& e) {  // nlohmann::json's errors and ours
     throw input_error(path.string(), std::string("damaged checkpoint (") + e.what() +
@@ -348,6 +303,8 @@ std::string ContentHash::hex_of(std::string_view text) {
   hash.add(text.data(), text.size());
   return hash.hex();
 }
+
+std::uint64_t ContentHash::value() const { return state_; }
 
 std::string ContentHash::hex() const {
   std::array<char, 17> text{};

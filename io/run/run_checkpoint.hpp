@@ -1,19 +1,25 @@
 #pragma once
-// The checkpoint of `owsim run` (`--resume`, INTERFACE.md): a hidden JSON file in the output
-// folder, `.owsim-resume.json`, replaced atomically (temporary + rename) while a run goes on. It
-// says how many frames are complete and holds everything the outputs had accumulated at that
-// moment: each temporary file's size (its bytes all handed to the kernel, so they outlive a
-// SIGKILL), the word, row and point counts, the LAS header statistics and creation day, the
-// summary totals and per-object ground truth, and the quick-look map. From it a killed run
+// The checkpoint of `owsim run` (`--resume`, INTERFACE.md): a hidden binary file in the output
+// folder, `.owsim-resume`, replaced atomically (temporary + rename) while a run goes on. It says
+// how many frames are complete and holds everything the outputs had accumulated at that moment:
+// each temporary file's size (its bytes all handed to the kernel, so they outlive a SIGKILL), the
+// word, row and point counts, the LAS header statistics and creation day, the summary totals and
+// the ground truth of the objects seen so far, and the quick-look map. From it a killed run
 // continues at its first incomplete frame and finishes with the bytes of an uninterrupted run.
 //
 // `run` names the run that wrote it: an object of everything that changes output bytes (owsim
 // version, contents of the scenario and the files it reads, seed, noise, frame count, outputs) and
-// nothing that does not (threads); a resume compares it key by key. Values round-trip exactly:
-// doubles as JSON numbers in their shortest round-trip form, the map mask run-length coded in
-// base64. The first line holds an FNV-1a 64 checksum of the JSON after it: a checkpoint changed by
-// a single byte is refused ("damaged checkpoint"), never resumed into spliced outputs. Errors throw
-// owsim::Error naming the file.
+// nothing that does not (threads); a resume compares it key by key.
+//
+// The file: "OWSIMRUN", the format version (u32), an FNV-1a 64 checksum of the body (u64), and
+// the body — little-endian fields in a fixed order (io/files/binary_record.hpp): the run as JSON
+// text, the frame count, the summary totals, the number of objects tallied and each seen object
+// (52 bytes: its index and its ObjectTruth, doubles as their exact bits), then the outputs'
+// states, the map mask run-length coded. Its size and the time to write it grow with the objects
+// seen, not with the scene: a million unseen trees cost nothing. A checkpoint changed by a single
+// byte is refused ("damaged checkpoint"), never resumed into spliced outputs; so is one of
+// another format version, such as the JSON `.owsim-resume.json` of owsim before version 3.
+// Errors throw owsim::Error naming the file.
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -29,8 +35,10 @@
 
 namespace owsim {
 
-inline constexpr std::string_view kRunCheckpointFileName = ".owsim-resume.json";
-inline constexpr int kRunCheckpointVersion = 2;  // 2: a checksum line before the JSON
+inline constexpr std::string_view kRunCheckpointFileName = ".owsim-resume";
+inline constexpr int kRunCheckpointVersion = 3;  // 3: binary (1, 2: JSON, in .owsim-resume.json)
+// Where owsim wrote its JSON checkpoints (versions 1 and 2); --resume refuses one left there.
+inline constexpr std::string_view kJsonRunCheckpointFileName = ".owsim-resume.json";
 
 struct RunCheckpoint {
   nlohmann::json run = nlohmann::json::object();  // the run that wrote it (see above)
@@ -46,11 +54,11 @@ struct RunCheckpoint {
   friend bool operator==(const RunCheckpoint&, const RunCheckpoint&) = default;
 };
 
-// `<directory>/.owsim-resume.json`
+// `<directory>/.owsim-resume`
 [[nodiscard]] std::filesystem::path run_checkpoint_path(const std::filesystem::path& directory);
 
-// The checkpoint file's text for a JSON `body`: the checksum line, then the body.
-[[nodiscard]] std::string checksummed_checkpoint_text(std::string_view body);
+// The checkpoint file's bytes around a `body`: the magic, the version, the body's checksum.
+[[nodiscard]] std::string checkpoint_file_bytes(std::string_view body);
 
 // Replaces the file at `path` atomically (no fsync: a checkpoint guards against a killed process,
 // not a lost machine).
@@ -71,6 +79,7 @@ class ContentHash {
   void add(const void* data, std::size_t size);
   // The whole file. Throws owsim::Error naming the path if it cannot be read.
   void add_file(const std::filesystem::path& path);
+  [[nodiscard]] std::uint64_t value() const;
   // 16 hex digits.
   [[nodiscard]] std::string hex() const;
   // hex() of `text` alone.

@@ -1,0 +1,182 @@
+// summary.json (io/run/summary_json.hpp) and the per-object state behind it
+// (io/run/flight_summary.hpp): the streamed text is byte for byte what nlohmann::json writes for
+// the same document (an independent writer: the tree owsim built before issue 19), for random
+// summaries with ids that need escapes; the totals come before the objects; and a summary's
+// checkpoint costs the objects seen, not the objects tallied.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <string>
+
+#include "geometry/error.hpp"
+#include "io/run/flight_summary.hpp"
+#include "io/run/run_checkpoint.hpp"
+#include "io/run/summary_json.hpp"
+#include "synthetic_flight.hpp"
+
+namespace owsim {
+namespace {
+
+namespace fs = std::filesystem;
+using test::content;
+
+class SummaryJsonTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("owsim_summary_json_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path dir_;
+};
+
+// A scene of `wires` conductors and `trees` trees with awkward ids.
+Scene scene_of(int wires, int trees) {
+  Scene scene;
+  const char* odd[] = {"a \"quoted\" id", "back\\slash", "tab\there", "nl\nid", "ünïcödé ✓", "\x01"};
+  for (int i = 0; i < wires; ++i) {
+    Conductor& wire = scene.conductors.emplace_back();
+    wire.id = i < 6 ? std::string(odd[i]) : "span-" + std::to_string(i) + "/1";
+  }
+  for (int i = 0; i < trees; ++i) {
+    scene.cylinders.push_back(
+        {"forest/" + std::to_string(i), i % 5 == 0 ? SurfaceClass::pole : SurfaceClass::tree});
+  }
+  return scene;
+}
+
+// Frames of random hits on random objects, with ranges of every magnitude.
+FlightSummary random_summary(std::size_t objects, std::uint64_t seed, int frames) {
+  std::mt19937_64 rng(seed);
+  FlightSummary summary(objects);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int frame = 0; frame < frames; ++frame) {
+    FrameTally tally;
+    tally.pulses = 20352;
+    tally.returns_by_class = {rng() % 100, rng() % 100, rng() % 1000, rng() % 10000};
+    tally.second_returns = rng() % 50;
+    for (int k = 0; k < 40; ++k) {
+      const double range = std::pow(10.0, 4.0 * unit(rng) - 1.0);
+      tally.object_hits.push_back({static_cast<std::uint32_t>(rng() % (objects / 3 + 1)),
+                                   frame * 0.33 + unit(rng) * 0.3, range});
+    }
+    summary.add_frame(frame, tally);
+  }
+  return summary;
+}
+
+// The document as nlohmann::json builds it: the head's keys sorted, the objects last.
+std::string oracle_text(const FlightSummary& summary, const Scene& scene,
+                        const nlohmann::json& facts) {
+  nlohmann::json head = facts;
+  head["frames"] = summary.frames();
+  head["pulses"] = summary.pulses();
+  head["second_returns"] = summary.second_returns();
+  head["returns"] = {{"wire", summary.returns_of(SurfaceClass::wire)},
+                     {"pole", summary.returns_of(SurfaceClass::pole)},
+                     {"tree", summary.returns_of(SurfaceClass::tree)},
+                     {"ground", summary.returns_of(SurfaceClass::ground)}};
+  std::map<std::string, std::pair<int, int>> by_class = {{"wire", {}}, {"pole", {}}, {"tree", {}}};
+  nlohmann::json objects = nlohmann::json::array();
+  const auto optional = [](bool seen, double value) {
+    return seen ? nlohmann::json(value) : nlohmann::json(nullptr);
+  };
+  for (std::size_t i = 0; i < summary.objects().size(); ++i) {
+    const ObjectTruth& truth = summary.objects()[i];
+    const bool wire = i < scene.conductors.size();
+    const Cylinder* cylinder = wire ? nullptr : &scene.cylinders[i - scene.conductors.size()];
+    const std::string surface(to_string(wire ? SurfaceClass::wire : cylinder->surface));
+    ++by_class[surface].first;
+    by_class[surface].second += truth.seen() ? 1 : 0;
+    objects.push_back({{"id", wire ? scene.conductors[i].id : cylinder->id},
+                       {"class", surface},
+                       {"returns", truth.returns},
+                       {"frames_seen", truth.frames_seen},
+                       {"first_seen_s", optional(truth.seen(), truth.first_seen_s)},
+                       {"first_seen_range_m", optional(truth.seen(), truth.first_seen_range_m)},
+                       {"min_range_m", optional(truth.seen(), truth.min_range_m)}});
+  }
+  for (const auto& [surface, counts] : by_class) {
+    head["objects_by_class"][surface] = {{"objects", counts.first}, {"seen", counts.second}};
+  }
+  nlohmann::ordered_json document;
+  for (const auto& [key, value] : head.items()) document[key] = value;
+  document["objects"] = objects;
+  return document.dump(2) + "\n";
+}
+
+TEST_F(SummaryJsonTest, TextIsNlohmannsForTheSameDocument) {
+  const nlohmann::json facts = {{"scenario", "corridor"}, {"seed", 2024}, {"wall_s", 0.1 + 0.2},
+                                {"setup_s", 1e-7},        {"threads", 2},  {"version", "0.1.0"}};
+  for (const auto& [wires, trees] : {std::pair{0, 0}, {3, 0}, {0, 7}, {59, 417}, {6, 3000}}) {
+    SCOPED_TRACE(std::to_string(wires) + " wires, " + std::to_string(trees) + " trees");
+    const Scene scene = scene_of(wires, trees);
+    const std::size_t objects = scene.conductors.size() + scene.cylinders.size();
+    const FlightSummary summary = random_summary(objects, objects + 1, objects == 0 ? 0 : 25);
+    const fs::path path = dir_ / "summary.json";
+    write_summary_json(path, summary, scene, facts);
+    EXPECT_EQ(content(path), oracle_text(summary, scene, facts));
+    // Totals first: the objects array is the last key.
+    const std::string text = content(path);
+    EXPECT_LT(text.find("\"returns\""), text.find("\"objects\": ["));
+  }
+}
+
+TEST_F(SummaryJsonTest, ASummaryOfAnotherSceneIsRefused) {
+  const Scene scene = scene_of(2, 2);
+  const FlightSummary summary(3);
+  EXPECT_THROW(write_summary_json(dir_ / "summary.json", summary, scene, nlohmann::json::object()),
+               Error);
+  EXPECT_FALSE(fs::exists(dir_ / "summary.json"));
+}
+
+TEST_F(SummaryJsonTest, ACheckpointCostsTheObjectsSeenNotTheObjectsTallied) {
+  // A million objects, three seen: the checkpoint holds three, and restores to the same summary.
+  FlightSummary summary(1'000'000);
+  FrameTally tally;
+  tally.object_hits = {{999'999, 0.5, 812.25}, {3, 0.6, 95.0}, {999'999, 0.7, 811.0}, {42, 0.8, 1}};
+  summary.add_frame(0, tally);
+  const FlightSummaryCheckpoint checkpoint = summary.checkpoint();
+  ASSERT_EQ(checkpoint.seen.size(), 3u);
+  EXPECT_EQ(checkpoint.seen[0].index, 999'999u);  // in the order first seen
+  EXPECT_EQ(checkpoint.seen[0].truth.returns, 2u);
+  EXPECT_EQ(checkpoint.seen[0].truth.first_seen_range_m, 812.25);
+  EXPECT_EQ(checkpoint.seen[0].truth.min_range_m, 811.0);
+  RunCheckpoint run;
+  run.summary = checkpoint;
+  const fs::path path = dir_ / ".owsim-resume";
+  write_run_checkpoint(path, run);
+  EXPECT_LT(fs::file_size(path), 400u);
+  FlightSummary restored(1'000'000);
+  restored.restore(read_run_checkpoint(path)->summary);
+  EXPECT_EQ(restored.checkpoint(), checkpoint);
+  for (const std::uint32_t i : {0u, 3u, 42u, 500'000u, 999'999u}) {
+    EXPECT_EQ(restored.objects()[i], summary.objects()[i]) << i;
+  }
+  // Another object count, an index past it, an object given twice, an unseen one: refused.
+  EXPECT_THROW(FlightSummary(999'999).restore(checkpoint), Error);
+  FlightSummaryCheckpoint bad = checkpoint;
+  bad.seen[1].index = 1'000'000;
+  EXPECT_THROW(FlightSummary(1'000'000).restore(bad), Error);
+  bad = checkpoint;
+  bad.seen[1].index = bad.seen[0].index;
+  EXPECT_THROW(FlightSummary(1'000'000).restore(bad), Error);
+  bad = checkpoint;
+  bad.seen[2].truth.returns = 0;
+  EXPECT_THROW(FlightSummary(1'000'000).restore(bad), Error);
+  // A hit on an object the summary does not tally.
+  FrameTally outside;
+  outside.object_hits = {{1'000'000, 0.1, 5.0}};
+  EXPECT_THROW(summary.add_frame(1, outside), Error);
+}
+
+}  // namespace
+}  // namespace owsim
