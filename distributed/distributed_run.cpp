@@ -145,6 +145,7 @@ Start open_outputs(const FlightSetup& setup, const FlightOutputOptions& output_o
 
 RunReport run_distributed(Communicator& comm, const Simulation& simulation,
                           const RunOptions& options, const DistributedRunOptions& distribution) {
+  const auto opening = Clock::now();
   const FlightSetup& setup = simulation.setup();
   const ScanParams& scan = setup.scenario.scan;
   const bool root = comm.rank() == kRoot;
@@ -257,8 +258,9 @@ RunReport run_distributed(Communicator& comm, const Simulation& simulation,
   }
   merge_map_hits();
   const double wall_s = std::chrono::duration<double>(Clock::now() - began).count();
-  const RunReport report = run_report(setup, output_options.directory, start.first_frame, wall_s,
-                                      threads, comm.size());
+  RunReport report = run_report(setup, output_options.directory, start.first_frame, wall_s,
+                                threads, comm.size());
+  report.setup_s = simulation.build_s() + std::chrono::duration<double>(began - opening).count();
   if (root) outputs->finish(run_facts(setup.scenario, report));
   comm.barrier();  // every process returns once the files are complete under their names
   return report;

@@ -42,7 +42,10 @@ struct RunReport {
   std::int64_t frames = 0;  // of the whole flight
   std::uint64_t pulses = 0;
   std::int64_t first_frame = 0;  // where this run began: > 0 when it resumed an interrupted one
-  double wall_s = 0.0;
+  // Before the first frame: reading the scenario, building the scene, the BVH and the simulator,
+  // opening the outputs (and reading a checkpoint). summary.json's `setup_s`.
+  double setup_s = 0.0;
+  double wall_s = 0.0;        // the frames: from the first frame's start to the last one's end
   double pulses_per_s = 0.0;  // of the frames this run simulated
   double realtime_factor = 0.0;
   int threads = 0;    // per process
@@ -104,10 +107,11 @@ void simulate_frames(const FrameSimulator& simulator, const FlightSetup& setup,
 // that cannot be resumed. Keeps a checkpoint in the output folder while it runs; with
 // options.resume, continues from the folder's checkpoint (throws owsim::Error naming it if it was
 // written by a run with other output-changing options or inputs), or starts from frame 0 with a
-// notice if there is none.
+// notice if there is none. `build_s`: the time building `setup` took, for RunReport::setup_s.
 [[nodiscard]] RunReport run_flight_outputs(const FlightSetup& setup,
                                            const SimulationOptions& simulation,
                                            const std::string& source_hash,
-                                           const RunOptions& options, int threads);
+                                           const RunOptions& options, int threads,
+                                           double build_s);
 
 }  // namespace owsim

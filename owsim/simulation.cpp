@@ -3,6 +3,7 @@
 #include <tbb/info.h>
 #include <tbb/task_arena.h>
 
+#include <chrono>
 #include <cmath>
 #include <string>
 #include <utility>
@@ -15,6 +16,8 @@
 
 namespace owsim {
 namespace {
+
+using Clock = std::chrono::steady_clock;
 
 int worker_count(const SimulationOptions& options) {
   return options.threads > 0 ? options.threads : tbb::info::default_concurrency();
@@ -104,13 +107,16 @@ Trajectory pushed_trajectory(const FlightSetup& setup, std::int64_t frame,
 }  // namespace
 
 struct Simulation::State {
-  State(Scenario scenario, const SimulationOptions& options_in, std::string hash)
+  // `start`: when building it began (before the scenario was read).
+  State(Scenario scenario, const SimulationOptions& options_in, std::string hash,
+        Clock::time_point start)
       : options(options_in),
         source_hash(std::move(hash)),
         setup(std::move(scenario), options),
         threads(worker_count(options)),
         arena(threads),
-        ids(owsim::object_ids(setup.scene)) {}
+        ids(owsim::object_ids(setup.scene)),
+        build_s(std::chrono::duration<double>(Clock::now() - start).count()) {}
 
   SimulationOptions options;
   std::string source_hash;  // of the scenario's text; empty for a scenario built in code
@@ -118,6 +124,7 @@ struct Simulation::State {
   int threads;
   mutable tbb::task_arena arena;
   std::vector<std::string> ids;
+  double build_s;  // reading the scenario and building the scene, the BVH and the simulator
 
   void simulate(std::int64_t frame, const PoseSource& poses, Frame& out) const {
     arena.execute([&] {
@@ -134,21 +141,27 @@ Simulation::~Simulation() = default;
 
 Simulation Simulation::open(const std::filesystem::path& scenario_file,
                             const SimulationOptions& options) {
+  const auto start = Clock::now();
   Scenario scenario = load_scenario(scenario_file);
   return Simulation(
-      std::make_unique<State>(std::move(scenario), options, hash_of_file(scenario_file)));
+      std::make_unique<State>(std::move(scenario), options, hash_of_file(scenario_file), start));
 }
 
 Simulation Simulation::from_yaml(std::string_view yaml, const std::filesystem::path& name,
                                  const SimulationOptions& options) {
+  const auto start = Clock::now();
   Scenario scenario = load_scenario_text(yaml, name);
-  return Simulation(std::make_unique<State>(std::move(scenario), options, ContentHash::hex_of(yaml)));
+  return Simulation(
+      std::make_unique<State>(std::move(scenario), options, ContentHash::hex_of(yaml), start));
 }
 
 Simulation Simulation::from_scenario(Scenario scenario, const SimulationOptions& options) {
-  return Simulation(std::make_unique<State>(checked(std::move(scenario)), options, std::string()));
+  const auto start = Clock::now();
+  return Simulation(
+      std::make_unique<State>(checked(std::move(scenario)), options, std::string(), start));
 }
 
+double Simulation::build_s() const { return state_->build_s; }
 const Scenario& Simulation::scenario() const { return state_->setup.scenario; }
 SensorModel Simulation::model() const { return state_->setup.scenario.scan.model; }
 std::int64_t Simulation::frame_count() const { return state_->setup.frames; }
@@ -211,7 +224,7 @@ nlohmann::json Simulation::run_fingerprint(const RunOptions& options) const {
 RunReport Simulation::run(const RunOptions& options) const {
   return state_->arena.execute([&] {
     return run_flight_outputs(state_->setup, state_->options, state_->source_hash, options,
-                              state_->threads);
+                              state_->threads, state_->build_s);
   });
 }
 

@@ -106,6 +106,8 @@ class Simulation {
   // Everything the simulation built (scene, trajectory, Embree scene, frame simulator), for tools
   // that go below the facade (`owsim bench`).
   [[nodiscard]] const FlightSetup& setup() const;
+  // Seconds building it took: reading the scenario, the scene, the BVH and the simulator.
+  [[nodiscard]] double build_s() const;
 
  private:
   struct State;

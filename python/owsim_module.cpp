@@ -170,6 +170,7 @@ py::dict report_dict(const RunReport& report) {
   out["frames"] = report.frames;
   out["first_frame"] = report.first_frame;
   out["pulses"] = report.pulses;
+  out["setup_s"] = report.setup_s;
   out["wall_s"] = report.wall_s;
   out["pulses_per_s"] = report.pulses_per_s;
   out["realtime_factor"] = report.realtime_factor;

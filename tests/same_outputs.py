@@ -9,7 +9,7 @@ import json
 import os
 import sys
 
-RUN_FACTS = ("wall_s", "pulses_per_s", "realtime_factor", "threads", "processes")
+RUN_FACTS = ("setup_s", "wall_s", "pulses_per_s", "realtime_factor", "threads", "processes")
 
 
 def files(root):

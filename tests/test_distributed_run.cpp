@@ -25,7 +25,7 @@ const fs::path kCorridor = fs::path(OWSIM_SOURCE_DIR) / "examples" / "corridor.y
 
 nlohmann::json summary_without_run_facts(const fs::path& folder) {
   nlohmann::json summary = nlohmann::json::parse(test::read_whole_file(folder / "summary.json"));
-  for (const char* fact : {"wall_s", "pulses_per_s", "realtime_factor", "threads", "processes"}) {
+  for (const char* fact : {"setup_s", "wall_s", "pulses_per_s", "realtime_factor", "threads", "processes"}) {
     EXPECT_TRUE(summary.contains(fact)) << fact;
     summary.erase(fact);
   }
