@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <mutex>
 #include <string>
 #include <utility>
 
@@ -115,7 +116,6 @@ struct Simulation::State {
         setup(std::move(scenario), options),
         threads(worker_count(options)),
         arena(threads),
-        ids(owsim::object_ids(setup.scene)),
         build_s(std::chrono::duration<double>(Clock::now() - start).count()) {}
 
   SimulationOptions options;
@@ -123,7 +123,9 @@ struct Simulation::State {
   FlightSetup setup;
   int threads;
   mutable tbb::task_arena arena;
-  std::vector<std::string> ids;
+  // object_ids(), built on first use: a run that never asks keeps no copy of a million ids.
+  mutable std::once_flag ids_built;
+  mutable std::vector<std::string> ids;
   double build_s;  // reading the scenario and building the scene, the BVH and the simulator
 
   void simulate(std::int64_t frame, const PoseSource& poses, Frame& out) const {
@@ -172,7 +174,10 @@ double Simulation::frame_start_s(std::int64_t frame) const {
 double Simulation::frame_end_s(std::int64_t frame) const {
   return pulse_time_s(state_->setup.scenario.scan, frame, pulses_per_frame() - 1);
 }
-const std::vector<std::string>& Simulation::object_ids() const { return state_->ids; }
+const std::vector<std::string>& Simulation::object_ids() const {
+  std::call_once(state_->ids_built, [&] { state_->ids = owsim::object_ids(state_->setup.scene); });
+  return state_->ids;
+}
 int Simulation::threads() const { return state_->threads; }
 const FlightSetup& Simulation::setup() const { return state_->setup; }
 
