@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <exception>
 #include <iostream>
+#include <string>
 
 #include "cli/commands.hpp"
 #include "distributed/communicator.hpp"
@@ -32,10 +33,11 @@ int main(int argc, char** argv) {
   } catch (const owsim::ReportedElsewhere&) {
     return 1;  // process 0 of the MPI job said why
   } catch (const owsim::Error& e) {
-    std::cerr << "owsim: " << e.what() << '\n';
+    // One write: under mpirun a line written in pieces interleaves with the launcher's own.
+    std::cerr << std::string("owsim: ") + e.what() + "\n";
     return 1;
   } catch (const std::exception& e) {
-    std::cerr << "owsim: internal error: " << e.what() << '\n';
+    std::cerr << std::string("owsim: internal error: ") + e.what() + "\n";
     return 2;
   }
   return result.exit_status;
