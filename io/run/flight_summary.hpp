@@ -96,7 +96,6 @@ class FlightSummary {
   void add_frame(std::int64_t frame, const FrameTally& tally);
 
   [[nodiscard]] std::span<const ObjectTruth> objects() const { return objects_; }
-  [[nodiscard]] const FlightCounts& counts() const { return counts_; }
   [[nodiscard]] std::uint64_t frames() const { return counts_.frames; }
   [[nodiscard]] std::uint64_t pulses() const { return counts_.pulses; }
   [[nodiscard]] std::uint64_t returns_of(SurfaceClass surface) const {

@@ -158,7 +158,6 @@ void put_quicklook(BinaryRecordWriter& out, const QuicklookCheckpoint& quicklook
 QuicklookCheckpoint quicklook_of(BinaryRecordReader& in) {
   QuicklookCheckpoint quicklook;
   const auto size = in.get<std::uint64_t>();
-  if (size > kLargestMapMask) throw Error("a map larger than any quick-look map");
   quicklook.map_mask = run_length_decoded(in.get_bytes(), static_cast<std::size_t>(size));
   if (in.get<std::uint8_t>() != 0) {
     const double x = in.get_double();
