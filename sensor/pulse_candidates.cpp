@@ -3,7 +3,6 @@
 #include <algorithm>
 
 #include "geometry/ray_segment.hpp"
-#include "sensor/beam.hpp"
 #include "sensor/reflectivity.hpp"
 #include "sensor/return_energy.hpp"
 
@@ -14,9 +13,8 @@ bool wire_segment_candidate(const PulseRay& ray, const Conductor& conductor, std
   const Eigen::Vector3d& p0 = conductor.points_enu_m[segment];
   const Eigen::Vector3d& p1 = conductor.points_enu_m[segment + 1];
   const RaySegmentApproach approach = closest_approach(ray.origin_enu_m, ray.dir_enu, p0, p1);
-  // The beam's cone first: a segment it cannot touch costs no angles (the same test
-  // wire_return_energy makes, so the candidates are unchanged).
-  if (!(approach.distance_m < conductor.radius_m + beam_radius_m(approach.ray_t, receiver.beam))) {
+  // The beam's cone first: a segment it cannot touch costs no angles.
+  if (!beam_touches_wire(approach.distance_m, approach.ray_t, conductor.radius_m, receiver.beam)) {
     return false;
   }
   const double incidence = wire_incidence_deg(ray.dir_enu, p1 - p0);

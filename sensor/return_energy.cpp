@@ -11,11 +11,16 @@ double energy_rel(double footprint_fraction, double incidence_deg, double reflec
          reflectivity * transmission;
 }
 
+bool beam_touches_wire(double distance_m, double range_m, double wire_radius_m,
+                       const BeamParams& beam) {
+  return distance_m < wire_radius_m + beam_radius_m(range_m, beam);
+}
+
 ReturnEnergy wire_return_energy(double distance_m, double range_m, double wire_radius_m,
                                 double incidence_deg, double reflectivity, const BeamParams& beam,
                                 const Atmosphere& atmosphere) {
+  if (!beam_touches_wire(distance_m, range_m, wire_radius_m, beam)) return {};
   const double beam_radius = beam_radius_m(range_m, beam);
-  if (!(distance_m < wire_radius_m + beam_radius)) return {};
   ReturnEnergy result;
   result.candidate = true;
   result.footprint_fraction = footprint_fraction(distance_m, wire_radius_m, beam_radius);

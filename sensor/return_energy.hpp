@@ -23,6 +23,11 @@ struct ReturnEnergy {
 [[nodiscard]] double energy_rel(double footprint_fraction, double incidence_deg,
                                 double reflectivity, double transmission);
 
+// Whether the beam touches a wire: the closest-approach distance d < r_wire + r_beam(R), R the
+// range along the ray to the closest approach (SENSOR-SPEC §7, closest approach eq 7.1–7.7)
+[[nodiscard]] bool beam_touches_wire(double distance_m, double range_m, double wire_radius_m,
+                                     const BeamParams& beam);
+
 // Wire: candidate when the closest-approach distance d < r_wire + r_beam(R), R the range along
 // the ray to the closest approach; fraction = circle–strip(d, r_wire, r_beam(R)) / (π r_beam²);
 // zeros when not a candidate

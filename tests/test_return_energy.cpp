@@ -95,3 +95,23 @@ TEST(ReturnEnergy, GroundIsFullShare) {
 
 }  // namespace
 }  // namespace owsim
+
+namespace owsim {
+namespace {
+
+// The wire rule's edge: r_wire + r_beam(R) = 0.01 + 100·tan(0.5 mrad) = 0.0600000042 m at 100 m.
+TEST(ReturnEnergy, TheBeamTouchesAWireInsideRWirePlusRBeam) {
+  const BeamParams beam{1.0, 0.0};
+  EXPECT_TRUE(beam_touches_wire(0.0600000, 100.0, 0.01, beam));
+  EXPECT_FALSE(beam_touches_wire(0.0600001, 100.0, 0.01, beam));
+  EXPECT_FALSE(beam_touches_wire(0.01 + 100.0 * std::tan(0.5e-3), 100.0, 0.01, beam));  // strict
+  // The same rule as wire_return_energy's candidate flag.
+  for (const double d : {0.0, 0.03, 0.0599, 0.0601, 1.0}) {
+    EXPECT_EQ(beam_touches_wire(d, 100.0, 0.01, beam),
+              wire_return_energy(d, 100.0, 0.01, 0.0, 0.4, beam, Atmosphere{}).candidate)
+        << d;
+  }
+}
+
+}  // namespace
+}  // namespace owsim
