@@ -148,7 +148,7 @@ LasCheckpoint las_of(BinaryRecordReader& in) {
 void put_quicklook(BinaryRecordWriter& out, const QuicklookCheckpoint& quicklook) {
   out.put(static_cast<std::uint64_t>(quicklook.map_mask.size()));
   out.put_bytes(run_length_coded(quicklook.map_mask));
-  out.put(std::uint8_t{quicklook.last_trajectory_px ? 1u : 0u});
+  out.put(static_cast<std::uint8_t>(quicklook.last_trajectory_px ? 1 : 0));
   if (quicklook.last_trajectory_px) {
     out.put(quicklook.last_trajectory_px->x());
     out.put(quicklook.last_trajectory_px->y());
@@ -184,7 +184,7 @@ void write_run_checkpoint(const std::filesystem::path& path, const RunCheckpoint
   BinaryRecordWriter out;
   out.put_bytes(json_text(checkpoint.run));
   out.put(checkpoint.frames_done);
-  out.put(std::uint8_t{checkpoint.finishing ? 1u : 0u});
+  out.put(static_cast<std::uint8_t>(checkpoint.finishing ? 1 : 0));
   put_summary(out, checkpoint.summary);
   const auto bit = [](bool present, StateBit state) { return present ? state : 0u; };
   out.put(static_cast<std::uint8_t>(
