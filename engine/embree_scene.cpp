@@ -1,6 +1,5 @@
 #include "engine/embree_scene.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -16,6 +15,11 @@ namespace {
 // radius is widened by this much so the exact filter, not float rounding, decides.
 constexpr double kCaptureMarginRelative = 1e-3;
 constexpr double kCaptureMarginAbsolute_m = 1e-3;
+// Embree reports a flat segment's hit at the depth of its point nearest the ray, computed in
+// float from offsets of at most a few km (errors well under a millimetre); the wire pass reaches
+// this far beyond the solid hit so the exact range comparison in the filter decides.
+constexpr double kDepthMarginRelative = 1e-5;
+constexpr double kDepthMarginAbsolute_m = 1e-3;
 
 // Intersection filter of a conductor: the exact §7 wire test in double precision; the hit is
 // recorded as a candidate and always rejected so traversal goes on to what lies behind. The wire
@@ -138,9 +142,14 @@ double EmbreeScene::capture_radius_m(const Conductor& conductor) const {
   return radius * (1.0 + kCaptureMarginRelative) + kCaptureMarginAbsolute_m;
 }
 
+float EmbreeScene::wire_search_end(double solid_range_m) {
+  const double end = solid_range_m * (1.0 + kDepthMarginRelative) + kDepthMarginAbsolute_m;
+  return std::nextafter(static_cast<float>(end), INFINITY);
+}
+
 void EmbreeScene::attach_conductor(const EmbreeDevice& device, std::size_t index) {
   const Conductor& conductor = scene().conductors[index];
-  RTCGeometry geometry = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_ROUND_LINEAR_CURVE);
+  RTCGeometry geometry = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_FLAT_LINEAR_CURVE);
   const std::size_t points = conductor.points_enu_m.size();
   auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
       geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), points));
@@ -155,13 +164,6 @@ void EmbreeScene::attach_conductor(const EmbreeDevice& device, std::size_t index
   auto* segments = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
       geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT, sizeof(unsigned), points - 1));
   for (std::size_t s = 0; s + 1 < points; ++s) segments[s] = static_cast<unsigned>(s);
-  // No segment has neighbours: each is then a whole capsule (cone and both end spheres). With
-  // neighbour flags (Embree's default for consecutive indices) a segment's surface inside its
-  // neighbours' cones is cut away, so a ray crossing the tube obliquely or edge-on never reports
-  // the segments it passes inside — and one of those may be the conductor's strongest.
-  auto* flags = static_cast<std::uint8_t*>(rtcSetNewGeometryBuffer(
-      geometry, RTC_BUFFER_TYPE_FLAGS, 0, RTC_FORMAT_UCHAR, sizeof(std::uint8_t), points - 1));
-  std::fill(flags, flags + (points - 1), std::uint8_t{0});
   // bindings_ was reserved for every conductor, so this pointer stays valid.
   bindings_.push_back(ConductorBinding{&conductor, static_cast<std::uint32_t>(index)});
   rtcSetGeometryUserData(geometry, &bindings_.back());

@@ -4,13 +4,15 @@
 //   solids  — what stops the central ray:
 //     cylinders  — one USER geometry (poles and trees), intersected in double precision;
 //     terrain    — one triangle mesh over the region the sensor can reach;
-//   wires   — conductors, one ROUND_LINEAR_CURVE geometry each, its radius the *capture radius*
-//             r_wire + r_beam(max range) (plus a float-safety margin), so every pulse whose beam
-//             can touch the wire reaches the intersection filter, which applies the exact
-//             double-precision rule of sensor/pulse_candidates.hpp to segments in front of the
-//             pulse's solid hit and rejects the hit so traversal continues. Segments are
-//             independent capsules (no neighbour flags), so a ray inside the tube still meets
-//             every segment it passes.
+//   wires   — conductors, one FLAT_LINEAR_CURVE geometry each, its radius the *capture radius*
+//             r_wire + r_beam(max range) (plus a float-safety margin). Embree tests a flat linear
+//             segment in the plane across the ray: a hit is exactly "the ray passes within the
+//             radius of the segment" (its end points included), reported once, at the depth of
+//             the segment's nearest point. So every pulse whose beam can touch the wire reaches
+//             the intersection filter, which applies the exact double-precision rule of
+//             sensor/pulse_candidates.hpp to segments in front of the pulse's solid hit and
+//             rejects the hit so traversal continues. (Round curves, tried first, are 3-D
+//             capsules with the same reach, a far dearer test, and report entry and exit.)
 // Both scenes are built in robust mode (watertight triangles, conservative bounds).
 // Float coordinates are offsets from the scenario origin, converted from double once here.
 // The scene is immutable after construction and may be traced from any number of threads.
@@ -46,7 +48,11 @@ class EmbreeScene {
   [[nodiscard]] const Scene& scene() const { return *objects_; }
   [[nodiscard]] const ReceiverParams& receiver() const { return receiver_; }
   [[nodiscard]] const TriangleMesh& terrain_mesh() const { return terrain_mesh_; }
+  // r_wire + r_beam(max range), widened by the float-safety margin.
   [[nodiscard]] double capture_radius_m(const Conductor& conductor) const;
+  // The wire pass's tfar for a pulse whose solid hit lies at `solid_range_m`: a little beyond it,
+  // so float rounding of a reported segment depth cannot hide a segment in front of the solid.
+  [[nodiscard]] static float wire_search_end(double solid_range_m);
 
   // Geometry ids: in wires(), conductor i is geomID i; in solids(), the cylinders, then the
   // terrain (RTC_INVALID_GEOMETRY_ID when absent).

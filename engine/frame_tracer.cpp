@@ -3,6 +3,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <array>
 #include <limits>
 
@@ -181,14 +182,13 @@ void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const st
     }
 
     // Pass 2: the wires in front of it. The filter offers only segments nearer than the solid
-    // hit; tfar is the solid's range rounded up to the next float. A segment whose closest
-    // approach lies before the solid has its capsule entered at least millimetres earlier (the
-    // capture margin), far more than the float rounding of the ray.
+    // hit; tfar reaches a float-safety margin beyond it (EmbreeScene::wire_search_end), so a
+    // segment whose closest approach lies before the solid is always reported.
     for (unsigned i = 0; i < n; ++i) {
       const unsigned id = rayhits[i].ray.id;
       const PulseCandidates& pulse = candidates[id];
       const float wire_tfar =
-          pulse.has_solid() ? std::nextafter(static_cast<float>(pulse.solid().range_m), INFINITY)
+          pulse.has_solid() ? std::min(tfar, EmbreeScene::wire_search_end(pulse.solid().range_m))
                             : tfar;
       set_ray(rayhits[i].ray, rays[id], id, wire_tfar);
       rayhits[i].hit.geomID = kNoHit;

@@ -184,6 +184,68 @@ TEST(EmbreeScene, ConductorEndsAreCapped) {
   }
 }
 
+// A sharp bend: rays aimed past the outside of the corner, where the nearest point of both
+// segments is the shared vertex, are candidates exactly as far as the beam reaches.
+TEST(EmbreeScene, OutsideOfABendIsCoveredUpToTheBeam) {
+  Scene objects;
+  objects.terrain.kind = TerrainKind::none;
+  Conductor corner = straight_wire({-50, 400, 30}, {0, 400, 30}, 5, 0.01);
+  corner.points_enu_m.emplace_back(0.0, 450.0, 30.0);  // a right angle at (0, 400, 30)
+  objects.conductors.push_back(corner);
+  const ReceiverParams receiver;
+  const EmbreeDevice device;
+  const EmbreeScene scene(device, objects, receiver, kRegion, timeout_m());
+  std::vector<PulseRay> rays;
+  std::vector<bool> expected;
+  // Rays straight down onto the plane z = 30, past the outer corner along the bisector.
+  for (double factor : {0.3, 0.8, 0.98, 1.02, 1.5}) {
+    const double limit = 0.01 + beam_radius_m(100.0, receiver.beam);
+    const double offset = factor * limit / std::sqrt(2.0);
+    rays.push_back(PulseRay{{offset, 400.0 - offset, 130.0}, -Eigen::Vector3d::UnitZ()});
+    expected.push_back(factor < 1.0);
+  }
+  const auto reference = trace_all(scene, objects, rays);
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    EXPECT_EQ(reference[i].wires().size(), expected[i] ? 1u : 0u) << i;
+  }
+}
+
+// Wires crossing rays a fraction of a millimetre in front of the ground, far from the origin
+// (float steps of ~0.1 mm), at random slant: each one in front is found, as by the brute-force
+// tracer, whatever the float rounding of the depth Embree reports; those behind are not.
+TEST(EmbreeScene, WiresJustInFrontOfTheSolidAreFound) {
+  test::Rng rng(19);
+  Scene objects;  // flat ground at u = 0
+  std::vector<PulseRay> rays;
+  std::vector<double> gaps;
+  for (int k = 0; k < 300; ++k) {
+    const double azimuth = test::uniform(rng, 0.0, 2.0 * std::numbers::pi);
+    const double depression = test::uniform(rng, 4.0, 30.0) * std::numbers::pi / 180.0;
+    const Eigen::Vector3d dir(std::cos(depression) * std::sin(azimuth),
+                              std::cos(depression) * std::cos(azimuth), -std::sin(depression));
+    const Eigen::Vector3d origin(test::uniform(rng, -1500.0, 1500.0),
+                                 test::uniform(rng, -1500.0, 1500.0), 60.0);
+    const double ground_range = 60.0 / std::sin(depression);
+    // Mostly within a few float steps of the ground, a few clearly behind it.
+    const double gap = k % 10 == 0 ? -test::uniform(rng, 0.0, 3e-4) : test::uniform(rng, 1e-6, 3e-4);
+    const Eigen::Vector3d crossing = origin + (ground_range - gap) * dir;
+    const Eigen::Vector3d across(std::cos(azimuth), -std::sin(azimuth), 0.0);
+    objects.conductors.push_back(
+        straight_wire(crossing - 0.5 * across, crossing + 0.5 * across, 1, 0.01));
+    rays.push_back(PulseRay{origin, dir});
+    gaps.push_back(gap);
+  }
+  const EmbreeDevice device;
+  const EmbreeScene scene(device, objects, ReceiverParams{}, kRegion, timeout_m());
+  const auto reference = trace_all(scene, objects, rays);
+  for (std::size_t k = 0; k < rays.size(); ++k) {
+    ASSERT_TRUE(reference[k].has_solid()) << k;
+    bool own = false;
+    for (const Candidate& wire : reference[k].wires()) own = own || wire.object_index == k;
+    EXPECT_EQ(own, gaps[k] > 0.0) << k << " gap " << gaps[k];
+  }
+}
+
 // A conductor running almost along the ray (0.5°, faint: incidence 89.5°) turns across it just
 // behind a pole, where it would be strong (incidence 0°). The ray stops at the pole, so the
 // conductor's candidate is its strongest segment in front of the pole — not dropped because a
