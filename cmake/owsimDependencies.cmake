@@ -21,6 +21,8 @@ endif()
 # and fails without them; its pkg-config file is complete, so use that.
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(OpenImageIO REQUIRED IMPORTED_TARGET GLOBAL OpenImageIO)
+# GDAL: only the optional module libowsim_gdal.so (DEM terrain) links it.
+pkg_check_modules(GDAL REQUIRED IMPORTED_TARGET GLOBAL gdal)
 
 # MPI (Debian's OpenMPI) is optional: with it, libowsim_mpi.so is built and `mpirun … owsim` runs
 # distributed (distributed/); without it everything else builds and owsim runs on one machine.

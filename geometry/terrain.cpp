@@ -84,6 +84,8 @@ double Terrain::height_at(double e_m, double n_m) const {
       return flat_u_m;
     case TerrainKind::grid:
       return grid.height_at(e_m, n_m);
+    case TerrainKind::dem:
+      return dem.height_at(e_m, n_m);
   }
   return 0.0;
 }
@@ -97,6 +99,8 @@ TriangleMesh Terrain::mesh(const Eigen::AlignedBox2d& region) const {
       return flat_mesh(region, flat_u_m);
     case TerrainKind::grid:
       return grid_mesh(region, grid);
+    case TerrainKind::dem:
+      return dem.mesh(region);
   }
   return {};
 }

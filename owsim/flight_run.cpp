@@ -41,6 +41,15 @@ nlohmann::json run_fingerprint(const FlightSetup& setup, const SimulationOptions
     terrain.add(grid.heights.data(), grid.heights.size() * sizeof(double));
     run["terrain_grid"] = terrain.hex();
   }
+  if (setup.scenario.scene.terrain.kind == TerrainKind::dem) {
+    const PostLattice& dem = setup.scenario.scene.terrain.dem;
+    ContentHash terrain;
+    const double shape[] = {static_cast<double>(dem.ncols), static_cast<double>(dem.nrows)};
+    terrain.add(shape, sizeof shape);
+    terrain.add(dem.posts.data(), dem.posts.size() * sizeof(Eigen::Vector3d));
+    terrain.add(dem.valid.data(), dem.valid.size());
+    run["terrain_dem"] = terrain.hex();
+  }
   return run;
 }
 

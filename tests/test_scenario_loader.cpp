@@ -861,11 +861,13 @@ TEST(ScenarioLoaderErrors, TerrainFiles) {
       scenario);
   EXPECT_EQ(forest_off.rfind(where + "11: scene.forest.area: tree ", 0), 0u) << forest_off;
   expect_error(m + "scene:\n  terrain: {flat_u: 0, grid: dem.asc}\n", 8, "scene.terrain.grid",
-               "give flat_u or grid, not both");
+               "give one of flat_u, grid and dem");
+  expect_error(m + "scene:\n  terrain: {grid: dem.asc, dem: dem.tif}\n", 8, "scene.terrain.dem",
+               "give one of flat_u, grid and dem");
   expect_error(m + "scene:\n  terrain: {reflectivity: 0.3}\n", 8, "scene.terrain",
-               "needs flat_u or grid (or write terrain: none)");
+               "needs flat_u, grid or dem (or write terrain: none)");
   expect_error(m + "scene:\n  terrain: hills\n", 8, "scene.terrain",
-               "expected none, {flat_u: U} or {grid: FILE}, got 'hills'");
+               "expected none, {flat_u: U}, {grid: FILE} or {dem: FILE}, got 'hills'");
 }
 
 TEST(ScenarioLoaderErrors, UnreadableFile) {

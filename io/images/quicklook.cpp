@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <limits>
+#include <optional>
 #include <system_error>
 #include <utility>
 
@@ -212,33 +214,51 @@ void Quicklook::draw_terrain(const Terrain& terrain) {
     base_.fill(kQuicklookFlatTerrain);
     return;
   }
-  // Grid: the nearest sample of each pixel centre, shaded from the lowest to the highest sample.
-  const HeightGrid& grid = terrain.grid;
   base_.fill(kQuicklookNoTerrain);
-  if (grid.ncols < 2 || grid.nrows < 2 || !(grid.cellsize_m > 0.0) ||
-      grid.heights.size() !=
-          static_cast<std::size_t>(grid.ncols) * static_cast<std::size_t>(grid.nrows)) {
-    return;
-  }
+  // The height under each pixel centre: the nearest sample of a grid, the surface of a DEM.
+  std::function<std::optional<double>(double, double)> height_under;
   double low = std::numeric_limits<double>::infinity(), high = -low;
-  for (const double h : grid.heights) {
-    if (grid.is_nodata(h) || !std::isfinite(h)) continue;
+  const auto extend = [&](double h) {
     low = std::min(low, h);
     high = std::max(high, h);
+  };
+  if (terrain.kind == TerrainKind::dem) {
+    const PostLattice& dem = terrain.dem;
+    for (std::size_t i = 0; i < dem.posts.size() && i < dem.valid.size(); ++i) {
+      if (dem.valid[i] != 0) extend(dem.posts[i].z());
+    }
+    if (dem.ncols < 2 || dem.nrows < 2 || dem.posts.size() != dem.valid.size()) return;
+    height_under = [&dem](double e_m, double n_m) { return dem.height_if_any(e_m, n_m); };
+  } else {
+    const HeightGrid& grid = terrain.grid;
+    if (grid.ncols < 2 || grid.nrows < 2 || !(grid.cellsize_m > 0.0) ||
+        grid.heights.size() !=
+            static_cast<std::size_t>(grid.ncols) * static_cast<std::size_t>(grid.nrows)) {
+      return;
+    }
+    for (const double h : grid.heights) {
+      if (!grid.is_nodata(h) && std::isfinite(h)) extend(h);
+    }
+    height_under = [&grid](double e_m, double n_m) -> std::optional<double> {
+      const double row = std::round((grid.y_north_m() - n_m) / grid.cellsize_m);
+      const double col = std::round((e_m - grid.x_west_m) / grid.cellsize_m);
+      if (row < 0.0 || row > grid.nrows - 1 || col < 0.0 || col > grid.ncols - 1) {
+        return std::nullopt;
+      }
+      const double h = grid.sample(static_cast<int>(row), static_cast<int>(col));
+      if (grid.is_nodata(h) || !std::isfinite(h)) return std::nullopt;
+      return h;
+    };
   }
   if (!(high >= low)) return;
   const double span = std::max(high - low, 1e-9);
   for (int y = 0; y < base_.height(); ++y) {
     const double n_m = region_.max().y() - (y + 0.5) * metres_per_px_;
-    const double row = std::round((grid.y_north_m() - n_m) / grid.cellsize_m);
-    if (row < 0.0 || row > grid.nrows - 1) continue;
     for (int x = 0; x < base_.width(); ++x) {
       const double e_m = region_.min().x() + (x + 0.5) * metres_per_px_;
-      const double col = std::round((e_m - grid.x_west_m) / grid.cellsize_m);
-      if (col < 0.0 || col > grid.ncols - 1) continue;
-      const double h = grid.sample(static_cast<int>(row), static_cast<int>(col));
-      if (grid.is_nodata(h) || !std::isfinite(h)) continue;
-      const double w = (h - low) / span;
+      const std::optional<double> h = height_under(e_m, n_m);
+      if (!h) continue;
+      const double w = (*h - low) / span;
       const auto mix = [w](std::uint8_t a, std::uint8_t b) {
         return static_cast<std::uint8_t>(std::lround(a + (static_cast<double>(b) - a) * w));
       };

@@ -186,7 +186,9 @@ void write_run_checkpoint(const std::filesystem::path& path, const RunCheckpoint
   out.put(checkpoint.frames_done);
   out.put(static_cast<std::uint8_t>(checkpoint.finishing ? 1 : 0));
   put_summary(out, checkpoint.summary);
-  const auto bit = [](bool present, StateBit state) { return present ? state : 0u; };
+  const auto bit = [](bool present, StateBit state) {
+    return present ? static_cast<unsigned>(state) : 0u;
+  };
   out.put(static_cast<std::uint8_t>(
       bit(checkpoint.words.has_value(), kWords) | bit(checkpoint.points_csv.has_value(), kPointsCsv) |
       bit(checkpoint.points_las.has_value(), kPointsLas) |

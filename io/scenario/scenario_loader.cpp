@@ -11,9 +11,11 @@
 #include "geometry/error.hpp"
 #include "geometry/number_text.hpp"
 #include "geometry/utm.hpp"
+#include "io/scenario/dem_terrain.hpp"
 #include "io/scenario/esri_ascii_grid.hpp"
 #include "io/scenario/value_ranges.hpp"
 #include "io/scenario/yaml_reader.hpp"
+#include "sensor/range_counter.hpp"
 #include "sensor/scan_params_check.hpp"
 
 namespace owsim {
@@ -83,12 +85,13 @@ class ScenarioReader {
     read_name(root.get("name"));
     if (const auto seed = root.get("seed")) scenario_.seed = seed->unsigned_integer();
     read_origin(root.require("origin"));
-    if (const auto scene = root.get("scene")) {
-      read_scene(*scene);
-    }
+    // The scene last: a DEM is read for the flight's reach (the route and the counter's range).
     if (const auto sensor = root.get("sensor")) read_sensor(*sensor);
     if (const auto atmosphere = root.get("atmosphere")) read_atmosphere(*atmosphere);
     read_trajectory(root.require("trajectory"));
+    if (const auto scene = root.get("scene")) {
+      read_scene(*scene);
+    }
     root.finish();
 
     scenario_.scan.counter = scenario_.receiver.counter;
@@ -459,7 +462,8 @@ class ScenarioReader {
     }
     if (value->is_scalar()) {
       if (value->text() != "none") {
-        value->fail("expected none, {flat_u: U} or {grid: FILE}, got " + value->describe());
+        value->fail("expected none, {flat_u: U}, {grid: FILE} or {dem: FILE}, got " +
+                    value->describe());
       }
       terrain.kind = TerrainKind::none;
       return;
@@ -467,12 +471,21 @@ class ScenarioReader {
     YamlMap map(*value);
     const std::optional<YamlValue> flat = map.get("flat_u");
     const std::optional<YamlValue> grid = map.get("grid");
-    if (flat && grid) grid->fail("give flat_u or grid, not both");
-    if (!flat && !grid) map.fail("needs flat_u or grid (or write terrain: none)");
+    const std::optional<YamlValue> dem = map.get("dem");
+    if (static_cast<int>(flat.has_value()) + static_cast<int>(grid.has_value()) +
+            static_cast<int>(dem.has_value()) >
+        1) {
+      (dem ? *dem : *grid).fail("give one of flat_u, grid and dem");
+    }
+    if (!flat && !grid && !dem) map.fail("needs flat_u, grid or dem (or write terrain: none)");
     if (const auto reflectivity = map.get("reflectivity")) {
       terrain.reflectivity = fraction(*reflectivity);
     }
     map.finish();
+    if (dem) {
+      read_dem(*dem);
+      return;
+    }
     if (flat) {
       terrain.kind = TerrainKind::flat;
       terrain.flat_u_m = flat->number();
@@ -493,6 +506,37 @@ class ScenarioReader {
       grid->fail(error.what());
     }
     terrain.kind = TerrainKind::grid;
+  }
+
+  // terrain.dem: the DEM's posts within the flight's reach (a waypoint route widened by the
+  // counter's timeout range; a recorded trajectory is read by io/trajectory after the scenario,
+  // so then the whole raster is read), and the route must lie on it.
+  void read_dem(const YamlValue& value) {
+    const std::string name = value.text();
+    if (name.empty()) value.fail("expected a file name, got ''");
+    const std::filesystem::path file = resolve(name);
+    Terrain& terrain = scenario_.scene.terrain;
+    const TrajectorySpec& route = scenario_.trajectory;
+    std::optional<Eigen::AlignedBox2d> reach;
+    if (route.source == TrajectorySpec::Source::waypoints) {
+      reach.emplace();
+      for (const Eigen::Vector3d& point : route.waypoints_enu_m) reach->extend(point.head<2>());
+      const double range_m = timeout_range_m(scenario_.receiver.counter);
+      reach->min().array() -= range_m;
+      reach->max().array() += range_m;
+    }
+    try {
+      terrain.dem = read_dem_terrain(file, *frame_, reach);
+    } catch (const Error& error) {
+      value.fail(error.what());
+    }
+    terrain.kind = TerrainKind::dem;
+    for (const Eigen::Vector3d& point : route.waypoints_enu_m) {
+      if (!terrain.dem.covers(point.x(), point.y())) {
+        value.fail(file.string() + ": does not cover the flight (waypoint at e = " +
+                   number_text(point.x()) + ", n = " + number_text(point.y()) + " m)");
+      }
+    }
   }
 
   std::string read_id(YamlMap& map) {

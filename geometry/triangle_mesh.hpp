@@ -1,0 +1,15 @@
+#pragma once
+// A triangle mesh in the local ENU frame: what the engine hands Embree as terrain.
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace owsim {
+
+struct TriangleMesh {
+  std::vector<Eigen::Vector3d> vertices;                // local ENU metres
+  std::vector<std::array<std::uint32_t, 3>> triangles;  // indices into vertices, CCW from above
+};
+
+}  // namespace owsim

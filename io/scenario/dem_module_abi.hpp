@@ -1,0 +1,27 @@
+#pragma once
+// The C entry points of libowsim_gdal.so (io/scenario/gdal/dem_module.cpp), the optional module that
+// reads elevation rasters with GDAL. The loader (io/scenario/dem_terrain.cpp) refuses a module whose
+// owsim_gdal_module_abi() differs from OWSIM_GDAL_MODULE_ABI.
+#include <cstddef>
+
+#define OWSIM_GDAL_MODULE_ABI 1
+
+extern "C" {
+
+// Receives the posts read (called once, before owsim_dem_read returns 0): an ncols × nrows
+// lattice, raster row 0 first; lon_lat_h holds 3 doubles a post (WGS-84 longitude and latitude in
+// degrees, ellipsoidal height in metres; NODATA posts at height 0), valid 1 byte a post (0 =
+// NODATA).
+typedef void (*owsim_dem_sink)(void* context, int ncols, int nrows, const double* lon_lat_h,
+                               const unsigned char* valid);
+
+typedef int (*owsim_gdal_module_abi_fn)(void);
+// Reads band 1 of the raster at `path`: the posts (cell centres) inside the WGS-84 box
+// [lon_min, lon_max] × [lat_min, lat_max] and one post around it, or every post when
+// whole_file is non-zero, reprojected from the CRS the file declares to WGS-84 (EPSG:4979).
+// Returns 0 and calls `sink` once, or returns non-zero with a one-line message in `error`.
+typedef int (*owsim_dem_read_fn)(const char* path, int whole_file, double lon_min,
+                                 double lat_min, double lon_max, double lat_max,
+                                 owsim_dem_sink sink, void* sink_context, char* error,
+                                 std::size_t error_size);
+}

@@ -1,0 +1,92 @@
+#include "io/scenario/dem_terrain.hpp"
+
+#include <algorithm>
+#include <array>
+#include <string>
+
+#include "geometry/error.hpp"
+#include "io/files/optional_module.hpp"
+#include "io/scenario/dem_module_abi.hpp"
+
+namespace owsim {
+namespace {
+
+constexpr std::string_view kDemPurpose = "DEM terrain (terrain.dem)";
+
+// The DEM reader of the optional module libowsim_gdal.so (GDAL), loaded on first use.
+owsim_dem_read_fn dem_reader() {
+  static const owsim_dem_read_fn read = [] {
+    const auto& module = OptionalModule::get("gdal", kDemPurpose);
+    const auto abi =
+        reinterpret_cast<owsim_gdal_module_abi_fn>(module.symbol("owsim_gdal_module_abi"));
+    if (abi() != OWSIM_GDAL_MODULE_ABI) {
+      throw Error(std::string(kDemPurpose) + " needs " + module.path() + " of interface " +
+                  std::to_string(OWSIM_GDAL_MODULE_ABI) + ", found " + std::to_string(abi()));
+    }
+    return reinterpret_cast<owsim_dem_read_fn>(module.symbol("owsim_dem_read"));
+  }();
+  return read;
+}
+
+// What the module hands back, placed in the local frame.
+struct LatticeSink {
+  const LocalFrame* frame;
+  PostLattice lattice;
+};
+
+void receive_posts(void* context, int ncols, int nrows, const double* lon_lat_h,
+                   const unsigned char* valid) {
+  auto* sink = static_cast<LatticeSink*>(context);
+  PostLattice& lattice = sink->lattice;
+  lattice.ncols = ncols;
+  lattice.nrows = nrows;
+  const auto count = static_cast<std::size_t>(ncols) * static_cast<std::size_t>(nrows);
+  lattice.posts.resize(count);
+  lattice.valid.assign(valid, valid + count);
+  for (std::size_t i = 0; i < count; ++i) {
+    const Geodetic post{lon_lat_h[3 * i + 1], lon_lat_h[3 * i], lon_lat_h[3 * i + 2]};
+    lattice.posts[i] = sink->frame->enu_from_geodetic(post);
+  }
+}
+
+// The WGS-84 box around an east/north box of the local frame: its edges sampled (they are
+// curves in latitude and longitude), at the origin's height.
+std::array<double, 4> geodetic_box(const Eigen::AlignedBox2d& reach, const LocalFrame& frame) {
+  constexpr int kSamples = 16;
+  double lon_min = 1e9, lat_min = 1e9, lon_max = -1e9, lat_max = -1e9;
+  for (int i = 0; i <= kSamples; ++i) {
+    const double s = static_cast<double>(i) / kSamples;
+    const Eigen::Vector2d lo = reach.min(), hi = reach.max();
+    for (const Eigen::Vector2d& en :
+         {Eigen::Vector2d(lo.x() + s * (hi.x() - lo.x()), lo.y()),
+          Eigen::Vector2d(lo.x() + s * (hi.x() - lo.x()), hi.y()),
+          Eigen::Vector2d(lo.x(), lo.y() + s * (hi.y() - lo.y())),
+          Eigen::Vector2d(hi.x(), lo.y() + s * (hi.y() - lo.y()))}) {
+      const Geodetic point = frame.geodetic_from_enu(Eigen::Vector3d(en.x(), en.y(), 0.0));
+      lon_min = std::min(lon_min, point.lon_deg);
+      lon_max = std::max(lon_max, point.lon_deg);
+      lat_min = std::min(lat_min, point.lat_deg);
+      lat_max = std::max(lat_max, point.lat_deg);
+    }
+  }
+  return {lon_min, lat_min, lon_max, lat_max};
+}
+
+}  // namespace
+
+PostLattice read_dem_terrain(const std::filesystem::path& file, const LocalFrame& frame,
+                             const std::optional<Eigen::AlignedBox2d>& reach) {
+  const owsim_dem_read_fn read = dem_reader();
+  const std::array<double, 4> box =
+      reach ? geodetic_box(*reach, frame) : std::array<double, 4>{0.0, 0.0, 0.0, 0.0};
+  LatticeSink sink{&frame, {}};
+  std::array<char, 1024> error{};
+  if (read(file.c_str(), reach ? 0 : 1, box[0], box[1], box[2], box[3], receive_posts, &sink,
+           error.data(), error.size()) != 0) {
+    throw Error(file.string() + ": " + error.data());
+  }
+  sink.lattice.validate(file.string());
+  return std::move(sink.lattice);
+}
+
+}  // namespace owsim

@@ -1,0 +1,185 @@
+// libowsim_gdal.so: the one place owsim touches GDAL. Loaded on demand by io/scenario/dem_terrain.cpp
+// when a scenario's terrain is a DEM, so that the owsim executable, libowsim_c.so and the Python
+// module never map GDAL and the library tree behind it. The entry points are plain C: no
+// exception crosses them.
+//
+// Posts are the raster's cell centres (GDAL's convention for both AREA and POINT rasters: the
+// geotransform maps pixel (col + 0.5, row + 0.5) to the centre of cell (col, row)). Their
+// coordinates in the file's CRS, with the cell's value as the vertical coordinate, are
+// transformed by GDAL/PROJ to WGS-84 longitude, latitude and ellipsoidal height (EPSG:4979):
+// a file whose CRS has a vertical datum (a geoid height, say) is converted where PROJ has the
+// grid, and refused with PROJ's reason where it does not; a file with a horizontal CRS only has
+// its values taken as ellipsoidal heights (PROJ passes them through).
+#include <cpl_conv.h>
+#include <cpl_error.h>
+#include <gdal.h>
+#include <ogr_srs_api.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "io/scenario/dem_module_abi.hpp"
+
+namespace {
+
+void copy_error(const std::string& message, char* error, std::size_t error_size) {
+  if (error == nullptr || error_size == 0) return;
+  std::snprintf(error, error_size, "%s", message.c_str());
+}
+
+std::string gdal_reason() {
+  const char* message = CPLGetLastErrorMsg();
+  return message != nullptr && *message != '\0' ? std::string(": ") + message : std::string();
+}
+
+struct DatasetCloser {
+  void operator()(void* dataset) const { GDALClose(dataset); }
+};
+struct SrsReleaser {
+  void operator()(void* srs) const { OSRDestroySpatialReference(srs); }
+};
+struct TransformReleaser {
+  void operator()(void* transform) const { OCTDestroyCoordinateTransformation(transform); }
+};
+using Dataset = std::unique_ptr<void, DatasetCloser>;
+using Srs = std::unique_ptr<void, SrsReleaser>;
+using Transform = std::unique_ptr<void, TransformReleaser>;
+
+// The posts' window: columns [col0, col0 + ncols), rows [row0, row0 + nrows).
+struct Window {
+  int col0 = 0, row0 = 0, ncols = 0, nrows = 0;
+};
+
+Window window_of(const double gt[6], int width, int height, OGRCoordinateTransformationH from_wgs,
+                 double lon_min, double lat_min, double lon_max, double lat_max) {
+  double x_min = 0, y_min = 0, x_max = 0, y_max = 0;
+  if (!OCTTransformBounds(from_wgs, lon_min, lat_min, lon_max, lat_max, &x_min, &y_min, &x_max,
+                          &y_max, 21)) {
+    throw std::runtime_error("cannot transform the flight's area into the file's CRS" +
+                             gdal_reason());
+  }
+  // Fractional post indices (post k's centre is at pixel k + 0.5).
+  const double c_a = (x_min - gt[0]) / gt[1] - 0.5, c_b = (x_max - gt[0]) / gt[1] - 0.5;
+  const double r_a = (y_min - gt[3]) / gt[5] - 0.5, r_b = (y_max - gt[3]) / gt[5] - 0.5;
+  const double c_lo = std::floor(std::min(c_a, c_b)) - 1, c_hi = std::ceil(std::max(c_a, c_b)) + 1;
+  const double r_lo = std::floor(std::min(r_a, r_b)) - 1, r_hi = std::ceil(std::max(r_a, r_b)) + 1;
+  Window window;
+  window.col0 = static_cast<int>(std::clamp(c_lo, 0.0, width - 1.0));
+  window.row0 = static_cast<int>(std::clamp(r_lo, 0.0, height - 1.0));
+  const int col1 = static_cast<int>(std::clamp(c_hi, 0.0, width - 1.0));
+  const int row1 = static_cast<int>(std::clamp(r_hi, 0.0, height - 1.0));
+  if (c_hi < 0 || r_hi < 0 || c_lo > width - 1 || r_lo > height - 1 || col1 <= window.col0 ||
+      row1 <= window.row0) {
+    throw std::runtime_error("does not cover the flight's area (lon " + std::to_string(lon_min) +
+                             " to " + std::to_string(lon_max) + ", lat " +
+                             std::to_string(lat_min) + " to " + std::to_string(lat_max) + ")");
+  }
+  window.ncols = col1 - window.col0 + 1;
+  window.nrows = row1 - window.row0 + 1;
+  return window;
+}
+
+void read_dem(const char* path, bool whole_file, double lon_min, double lat_min, double lon_max,
+              double lat_max, owsim_dem_sink sink, void* sink_context) {
+  GDALAllRegister();
+  CPLErrorReset();
+  const Dataset dataset(GDALOpen(path, GA_ReadOnly));
+  if (!dataset) throw std::runtime_error("GDAL cannot open it" + gdal_reason());
+  if (GDALGetRasterCount(dataset.get()) < 1) throw std::runtime_error("has no raster band");
+  double gt[6];
+  if (GDALGetGeoTransform(dataset.get(), gt) != CE_None) {
+    throw std::runtime_error("has no georeferencing (geotransform)");
+  }
+  if (gt[2] != 0.0 || gt[4] != 0.0 || gt[1] == 0.0 || gt[5] == 0.0) {
+    throw std::runtime_error("is a rotated or sheared raster, which owsim does not read");
+  }
+  OGRSpatialReferenceH declared = GDALGetSpatialRef(dataset.get());
+  if (declared == nullptr) throw std::runtime_error("declares no CRS");
+  const Srs source(OSRClone(declared));
+  OSRSetAxisMappingStrategy(source.get(), OAMS_TRADITIONAL_GIS_ORDER);
+  const Srs wgs84(OSRNewSpatialReference(nullptr));
+  OSRImportFromEPSG(wgs84.get(), 4979);
+  OSRSetAxisMappingStrategy(wgs84.get(), OAMS_TRADITIONAL_GIS_ORDER);
+  const Transform to_wgs(OCTNewCoordinateTransformation(source.get(), wgs84.get()));
+  if (!to_wgs) {
+    throw std::runtime_error("GDAL cannot transform its CRS to WGS-84" + gdal_reason());
+  }
+  const int width = GDALGetRasterXSize(dataset.get()), height = GDALGetRasterYSize(dataset.get());
+  Window window{0, 0, width, height};
+  if (!whole_file) {
+    const Transform from_wgs(OCTNewCoordinateTransformation(wgs84.get(), source.get()));
+    if (!from_wgs) {
+      throw std::runtime_error("GDAL cannot transform WGS-84 to its CRS" + gdal_reason());
+    }
+    window = window_of(gt, width, height, from_wgs.get(), lon_min, lat_min, lon_max, lat_max);
+  }
+  if (window.ncols < 2 || window.nrows < 2) {
+    throw std::runtime_error("has fewer than 2 × 2 posts where the flight is");
+  }
+  GDALRasterBandH band = GDALGetRasterBand(dataset.get(), 1);
+  const auto count = static_cast<std::size_t>(window.ncols) * window.nrows;
+  std::vector<double> values(count);
+  if (GDALRasterIO(band, GF_Read, window.col0, window.row0, window.ncols, window.nrows,
+                   values.data(), window.ncols, window.nrows, GDT_Float64, 0, 0) != CE_None) {
+    throw std::runtime_error("GDAL cannot read its heights" + gdal_reason());
+  }
+  int has_nodata = 0;
+  const double nodata = GDALGetRasterNoDataValue(band, &has_nodata);
+  const double scale = GDALGetRasterScale(band, nullptr), offset = GDALGetRasterOffset(band, nullptr);
+  std::vector<double> x(count), y(count), z(count);
+  std::vector<unsigned char> valid(count);
+  for (int r = 0; r < window.nrows; ++r) {
+    for (int c = 0; c < window.ncols; ++c) {
+      const auto i = static_cast<std::size_t>(r) * window.ncols + c;
+      const double value = values[i];
+      valid[i] = std::isfinite(value) && !(has_nodata != 0 && value == nodata) ? 1 : 0;
+      x[i] = gt[0] + (window.col0 + c + 0.5) * gt[1];
+      y[i] = gt[3] + (window.row0 + r + 0.5) * gt[5];
+      z[i] = valid[i] != 0 ? value * scale + offset : 0.0;
+    }
+  }
+  std::vector<int> success(count);
+  if (!OCTTransformEx(to_wgs.get(), static_cast<int>(count), x.data(), y.data(), z.data(),
+                      success.data()) ||
+      std::find(success.begin(), success.end(), 0) != success.end()) {
+    throw std::runtime_error("GDAL/PROJ cannot transform its posts to WGS-84" + gdal_reason());
+  }
+  std::vector<double> lon_lat_h(3 * count);
+  for (std::size_t i = 0; i < count; ++i) {
+    lon_lat_h[3 * i] = x[i];
+    lon_lat_h[3 * i + 1] = y[i];
+    lon_lat_h[3 * i + 2] = z[i];
+  }
+  sink(sink_context, window.ncols, window.nrows, lon_lat_h.data(), valid.data());
+}
+
+}  // namespace
+
+extern "C" __attribute__((visibility("default"))) int owsim_gdal_module_abi(void) {
+  return OWSIM_GDAL_MODULE_ABI;
+}
+
+extern "C" __attribute__((visibility("default"))) int owsim_dem_read(
+    const char* path, int whole_file, double lon_min, double lat_min, double lon_max,
+    double lat_max, owsim_dem_sink sink, void* sink_context, char* error,
+    std::size_t error_size) {
+  CPLPushErrorHandler(CPLQuietErrorHandler);
+  int status = 0;
+  try {
+    read_dem(path, whole_file != 0, lon_min, lat_min, lon_max, lat_max, sink, sink_context);
+  } catch (const std::exception& failure) {
+    copy_error(failure.what(), error, error_size);
+    status = 1;
+  } catch (...) {
+    copy_error("an unknown error in the GDAL module", error, error_size);
+    status = 1;
+  }
+  CPLPopErrorHandler();
+  return status;
+}

@@ -1,0 +1,174 @@
+// Protects DEM terrain (geometry/post_lattice.hpp, io/scenario/dem_terrain.hpp): the lattice's
+// surface, holes and edges against closed forms, and whole runs over GeoTIFFs that GDAL writes
+// (a projected and a geographic CRS, each with a NODATA patch) against GDAL's own bilinear
+// interpolation of the raster at every ground return's latitude and longitude
+// (tests/oracles/dem_oracle.py); bad DEMs give one line and no output.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <string>
+
+#include "cli_runner.hpp"
+#include "geometry/error.hpp"
+#include "geometry/post_lattice.hpp"
+#include "python_oracle.hpp"
+#include "scene_fixtures.hpp"
+
+namespace owsim {
+namespace {
+
+namespace fs = std::filesystem;
+using test::CliResult;
+using test::run_cli;
+using test::TempDir;
+
+// A lattice rotated by `angle` with posts on the plane u = 3 + 0.2 e − 0.1 n (any triangulation
+// of a plane is the plane), raster row 0 the northmost.
+PostLattice plane_lattice(double angle, int ncols, int nrows, double step_m) {
+  PostLattice lattice;
+  lattice.ncols = ncols;
+  lattice.nrows = nrows;
+  const Eigen::Vector2d along(std::cos(angle), std::sin(angle));
+  const Eigen::Vector2d down(std::sin(angle), -std::cos(angle));
+  for (int r = 0; r < nrows; ++r) {
+    for (int c = 0; c < ncols; ++c) {
+      const Eigen::Vector2d en = (c * along + r * down) * step_m;
+      lattice.posts.emplace_back(en.x(), en.y(), 3.0 + 0.2 * en.x() - 0.1 * en.y());
+      lattice.valid.push_back(1);
+    }
+  }
+  return lattice;
+}
+
+TEST(PostLattice, HeightIsTheSurfaceAtRandomPoints) {
+  test::Rng rng(20);
+  for (double angle : {0.0, 0.3, -1.1}) {
+    const PostLattice lattice = plane_lattice(angle, 40, 30, 10.0);
+    lattice.validate("plane");
+    for (int i = 0; i < 500; ++i) {
+      const double c = test::uniform(rng, 0.0, 39.0), r = test::uniform(rng, 0.0, 29.0);
+      const Eigen::Vector2d en =
+          (c * Eigen::Vector2d(std::cos(angle), std::sin(angle)) +
+           r * Eigen::Vector2d(std::sin(angle), -std::cos(angle))) *
+          10.0;
+      EXPECT_NEAR(lattice.height_at(en.x(), en.y()), 3.0 + 0.2 * en.x() - 0.1 * en.y(), 1e-9);
+      EXPECT_TRUE(lattice.covers(en.x(), en.y()));
+    }
+    EXPECT_FALSE(lattice.covers(-50.0 * std::cos(angle), -50.0 * std::sin(angle)));
+    EXPECT_THROW((void)lattice.height_at(-50.0 * std::cos(angle), -50.0 * std::sin(angle)),
+                 Error);
+  }
+}
+
+TEST(PostLattice, TwistedCellFollowsItsTwoTriangles) {
+  // One 10 m cell, heights 0 except its north-west post at 4 m: the diagonal runs from the
+  // south-west post (row 1, col 0) to the north-east one (row 0, col 1).
+  PostLattice lattice;
+  lattice.ncols = 2;
+  lattice.nrows = 2;
+  lattice.posts = {{0, 10, 4}, {10, 10, 0}, {0, 0, 0}, {10, 0, 0}};
+  lattice.valid = {1, 1, 1, 1};
+  EXPECT_NEAR(lattice.height_at(5.0, 5.0), 0.0, 1e-12);   // on the diagonal
+  EXPECT_NEAR(lattice.height_at(2.0, 7.0), 2.0, 1e-12);   // north-west triangle: −0.4 e + 0.4 n
+  EXPECT_NEAR(lattice.height_at(7.0, 2.0), 0.0, 1e-12);   // south-east triangle is flat
+  const TriangleMesh mesh = lattice.mesh(Eigen::AlignedBox2d(Eigen::Vector2d(-1, -1),
+                                                             Eigen::Vector2d(1, 1)));
+  ASSERT_EQ(mesh.triangles.size(), 2u);
+  for (const auto& t : mesh.triangles) {
+    const Eigen::Vector3d a = mesh.vertices[t[0]], b = mesh.vertices[t[1]], c = mesh.vertices[t[2]];
+    EXPECT_GT((b - a).cross(c - a).z(), 0.0);  // counter-clockwise seen from above
+  }
+}
+
+TEST(PostLattice, HolesAreNoSurface) {
+  PostLattice lattice = plane_lattice(0.0, 5, 5, 10.0);
+  lattice.valid[lattice.index(2, 2)] = 0;  // the four cells around post (2, 2)
+  EXPECT_EQ(lattice.mesh(Eigen::AlignedBox2d(Eigen::Vector2d(-100, -100),
+                                             Eigen::Vector2d(100, 100)))
+                .triangles.size(),
+            2u * (16 - 4));
+  EXPECT_TRUE(lattice.covers(20.0, -20.0));
+  EXPECT_FALSE(lattice.height_if_any(21.0, -19.0).has_value());
+  EXPECT_THROW((void)lattice.height_at(21.0, -19.0), Error);
+  EXPECT_NEAR(lattice.height_at(5.0, -5.0), 3.0 + 1.0 + 0.5, 1e-9);
+  lattice.posts.pop_back();
+  EXPECT_THROW(lattice.validate("short"), Error);
+}
+
+class DemRuns : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const fs::path oracle = fs::path(OWSIM_SOURCE_DIR) / "tests/oracles/dem_oracle.py";
+    (void)test::run_python_file(oracle,
+                                {"make " + dir_.path().string() + " 48.6881 10.8447", false});
+  }
+
+  // The single-span example over the DEM `file`, flying from `east_m` at 110 m.
+  CliResult run(const std::string& file, const std::string& out, double east_m = 200.0) {
+    std::ifstream example(fs::path(OWSIM_SOURCE_DIR) / "examples/single_span.yaml");
+    std::string yaml((std::istreambuf_iterator<char>(example)), std::istreambuf_iterator<char>());
+    const auto replace = [&yaml](const std::string& from, const std::string& to) {
+      const auto at = yaml.find(from);
+      ASSERT_NE(at, std::string::npos) << from;
+      yaml.replace(at, from.size(), to);
+    };
+    replace("terrain: {flat_u: 0}", "terrain: {dem: " + file + "}");
+    replace("{e: -600, n: 0, u: 60}", "{e: -600, n: 0, u: 110}");
+    replace("{e: 200, n: 0, u: 60}", "{e: " + std::to_string(east_m) + ", n: 0, u: 110}");
+    const fs::path scenario = dir_ / (out + ".yaml");
+    std::ofstream(scenario) << yaml;
+    return run_cli({"run", scenario.string(), "--no-noise", "--frames", "6", "--outputs",
+                    "points,summary", "--out", (dir_ / out).string()},
+                   dir_.path());
+  }
+
+  std::string check(const std::string& out, const std::string& raster) {
+    const fs::path oracle = fs::path(OWSIM_SOURCE_DIR) / "tests/oracles/dem_oracle.py";
+    return test::run_python_file(oracle, {"check " + (dir_ / out / "points.csv").string() + " " +
+                                              (dir_ / raster).string(),
+                                          false});
+  }
+
+  TempDir dir_{"owsim_dem"};
+};
+
+TEST_F(DemRuns, GroundReturnsLieOnTheProjectedDem) {
+  const CliResult result = run("utm.tif", "utm");
+  ASSERT_EQ(result.exit_status, 0) << result.err;
+  const std::string verdict = check("utm", "utm.tif");
+  ASSERT_EQ(verdict.rfind("ok ", 0), 0u) << verdict;
+  EXPECT_GT(std::stol(verdict.substr(3)), 10000) << verdict;
+}
+
+TEST_F(DemRuns, GroundReturnsLieOnTheGeographicDem) {
+  const CliResult result = run("geo.tif", "geo");
+  ASSERT_EQ(result.exit_status, 0) << result.err;
+  const std::string verdict = check("geo", "geo.tif");
+  ASSERT_EQ(verdict.rfind("ok ", 0), 0u) << verdict;
+  EXPECT_GT(std::stol(verdict.substr(3)), 10000) << verdict;
+}
+
+TEST_F(DemRuns, BadDemsGiveOneLineAndNoOutput) {
+  const struct {
+    std::string file;
+    double east_m;
+    std::string says;
+  } cases[] = {{"nocrs.tif", 200.0, "declares no CRS"},
+               {"missing.tif", 200.0, "GDAL cannot open it"},
+               {"utm.tif", 2800.0, "does not cover the flight"}};
+  for (const auto& bad : cases) {
+    SCOPED_TRACE(bad.file);
+    const CliResult result = run(bad.file, "bad", bad.east_m);
+    EXPECT_NE(result.exit_status, 0);
+    EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
+    EXPECT_NE(result.err.find("scene.terrain.dem"), std::string::npos) << result.err;
+    EXPECT_NE(result.err.find(bad.file), std::string::npos) << result.err;
+    EXPECT_NE(result.err.find(bad.says), std::string::npos) << result.err;
+    EXPECT_FALSE(fs::exists(dir_ / "bad")) << result.err;
+  }
+}
+
+}  // namespace
+}  // namespace owsim
