@@ -5,28 +5,11 @@
 #include <string>
 
 #include "geometry/error.hpp"
-#include "io/files/optional_module.hpp"
-#include "io/scenario/dem_module_abi.hpp"
+#include "io/scenario/gdal_module.hpp"
+#include "io/scenario/gdal_module_abi.hpp"
 
 namespace owsim {
 namespace {
-
-constexpr std::string_view kDemPurpose = "DEM terrain (terrain.dem)";
-
-// The DEM reader of the optional module libowsim_gdal.so (GDAL), loaded on first use.
-owsim_dem_read_fn dem_reader() {
-  static const owsim_dem_read_fn read = [] {
-    const auto& module = OptionalModule::get("gdal", kDemPurpose);
-    const auto abi =
-        reinterpret_cast<owsim_gdal_module_abi_fn>(module.symbol("owsim_gdal_module_abi"));
-    if (abi() != OWSIM_GDAL_MODULE_ABI) {
-      throw Error(std::string(kDemPurpose) + " needs " + module.path() + " of interface " +
-                  std::to_string(OWSIM_GDAL_MODULE_ABI) + ", found " + std::to_string(abi()));
-    }
-    return reinterpret_cast<owsim_dem_read_fn>(module.symbol("owsim_dem_read"));
-  }();
-  return read;
-}
 
 // What the module hands back, placed in the local frame.
 struct LatticeSink {
@@ -76,7 +59,8 @@ std::array<double, 4> geodetic_box(const Eigen::AlignedBox2d& reach, const Local
 
 PostLattice read_dem_terrain(const std::filesystem::path& file, const LocalFrame& frame,
                              const std::optional<Eigen::AlignedBox2d>& reach) {
-  const owsim_dem_read_fn read = dem_reader();
+  const auto read = reinterpret_cast<owsim_dem_read_fn>(
+      gdal_module("DEM terrain (terrain.dem)").symbol("owsim_dem_read"));
   const std::array<double, 4> box =
       reach ? geodetic_box(*reach, frame) : std::array<double, 4>{0.0, 0.0, 0.0, 0.0};
   LatticeSink sink{&frame, {}};

@@ -13,6 +13,7 @@
 #include "geometry/utm.hpp"
 #include "io/scenario/dem_terrain.hpp"
 #include "io/scenario/esri_ascii_grid.hpp"
+#include "io/scenario/gis_lines.hpp"
 #include "io/scenario/value_ranges.hpp"
 #include "io/scenario/yaml_reader.hpp"
 #include "sensor/range_counter.hpp"
@@ -439,6 +440,9 @@ class ScenarioReader {
     if (const auto spans = map.get("spans")) {
       for (const YamlValue& item : spans->items()) read_span(item);
     }
+    if (const auto lines = map.get("power_lines")) {
+      for (const YamlValue& item : lines->items()) read_power_lines(item);
+    }
     if (const auto poles = map.get("poles")) {
       for (const YamlValue& item : poles->items()) {
         scenario_.scene.poles.push_back(read_cylinder(item, SurfaceClass::pole, 0.3));
@@ -560,6 +564,13 @@ class ScenarioReader {
     span.id = read_id(map);
     span.from_en = read_position(map.require("from"), Height::forbidden).head<2>();
     span.to_en = read_position(map.require("to"), Height::forbidden).head<2>();
+    read_span_properties(map, span);
+    map.finish();
+    add_span(std::move(span), value.path());
+  }
+
+  // The keys a span and a power line share: heights, sag, layout, conductor, supports.
+  void read_span_properties(YamlMap& map, SpanSpec& span) {
     if (const auto heights = map.get("support_heights_m")) {
       const std::vector<double> h = heights->numbers(2);
       span.support_height_1_m = h[0];
@@ -589,13 +600,135 @@ class ScenarioReader {
       span.pole_reflectivity = pole.number_or("reflectivity", span.pole_reflectivity);
       pole.finish();
     }
-    map.finish();
+  }
+
+  void add_span(SpanSpec span, const std::string& where) {
     try {
-      (void)build_span(span, scenario_.scene.terrain, value.path());
+      (void)build_span(span, scenario_.scene.terrain, where);
     } catch (const Error& error) {
-      source_.rethrow_at_key(error, value.path());
+      source_.rethrow_at_key(error, where);
     }
     scenario_.scene.spans.push_back(std::move(span));
+  }
+
+  // power_lines: every LineString of a GIS file is a line of spans between its vertices (the
+  // towers): span k of line L is "L/k" (k from 1), its tower poles "L/tower-k" are shared by the
+  // spans that meet there. L is the feature's `name` property, else the entry's id (with "-i" for
+  // the i-th line when the file holds several), else the file's stem with "-i". A feature's
+  // properties layout, support_height_m, lowest_point_m and diameter_mm override the entry's.
+  void read_power_lines(const YamlValue& value) {
+    YamlMap map(value);
+    const YamlValue file_value = map.require("file");
+    const std::string name = file_value.text();
+    if (name.empty()) file_value.fail("expected a file name, got ''");
+    const std::filesystem::path file = resolve(name);
+    std::string prefix = file.stem().string();
+    if (const auto id = map.get("id")) {
+      prefix = id->text();
+      if (prefix.empty() || prefix.find('/') != std::string::npos) {
+        id->fail("a line id must be non-empty and without '/'");
+      }
+    }
+    SpanSpec common;
+    read_span_properties(map, common);
+    map.finish();
+    std::vector<GisLine> lines;
+    try {
+      lines = read_gis_lines(file);
+    } catch (const Error& error) {
+      file_value.fail(error.what());
+    }
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+      const GisLine& line = lines[i];
+      const std::string feature = file.filename().string() + " feature " +
+                                  std::to_string(line.feature);
+      std::string line_name = lines.size() == 1 ? prefix : prefix + "-" + std::to_string(i + 1);
+      SpanSpec spec = common;
+      try {
+        apply_line_properties(line.properties, line_name, spec);
+      } catch (const Error& error) {
+        file_value.fail(feature + ": " + error.what());
+      }
+      if (spec.support_height_1_m != spec.support_height_2_m) {
+        file_value.fail(feature + ": a line's towers share one height: give support_heights_m "
+                        "[h, h] or the property support_height_m");
+      }
+      if (line.lon_lat.size() < 2) {
+        file_value.fail(feature + ": a line needs at least 2 towers, got " +
+                        std::to_string(line.lon_lat.size()));
+      }
+      if (!ids_.emplace(line_name, file_value.line()).second) {
+        file_value.fail(feature + ": duplicate line name '" + line_name + "'");
+      }
+      add_line(line, line_name, spec, file_value, feature);
+    }
+  }
+
+  static void apply_line_properties(const nlohmann::json& properties, std::string& name,
+                                    SpanSpec& spec) {
+    const auto number = [&](const char* key) -> std::optional<double> {
+      if (!properties.contains(key)) return std::nullopt;
+      if (!properties[key].is_number()) throw Error(std::string("property ") + key + " is not a number");
+      return properties[key].get<double>();
+    };
+    if (properties.contains("name")) {
+      name = properties["name"].is_string() ? properties["name"].get<std::string>()
+                                            : properties["name"].dump();
+      if (name.empty() || name.find('/') != std::string::npos) {
+        throw Error("property name must be non-empty and without '/'");
+      }
+    }
+    if (properties.contains("layout")) {
+      const auto kind = properties["layout"].is_string()
+                            ? layout_kind_from_string(properties["layout"].get<std::string>())
+                            : std::nullopt;
+      if (!kind) throw Error("property layout must be single, tri or sept");
+      spec.offsets = conductor_offsets(*kind);
+    }
+    if (const auto h = number("support_height_m")) {
+      spec.support_height_1_m = *h;
+      spec.support_height_2_m = *h;
+    }
+    if (const auto s = number("lowest_point_m")) spec.lowest_point_m = *s;
+    if (const auto d = number("diameter_mm")) spec.conductor_diameter_m = *d / 1000.0;
+  }
+
+  // The spans between consecutive towers, and one pole per tower when the line has supports.
+  void add_line(const GisLine& line, const std::string& name, const SpanSpec& spec,
+                const YamlValue& where, const std::string& feature) {
+    std::vector<Eigen::Vector3d> towers;
+    for (const Eigen::Vector2d& lon_lat : line.lon_lat) {
+      Geodetic point{lon_lat.y(), lon_lat.x(), scenario_.origin.h_m};
+      try {
+        validate_geodetic(point, feature);
+      } catch (const Error& error) {
+        where.fail(error.what());
+      }
+      towers.push_back(on_terrain(point, where));
+    }
+    for (std::size_t k = 0; k + 1 < towers.size(); ++k) {
+      SpanSpec span = spec;
+      span.id = name + "/" + std::to_string(k + 1);
+      span.from_en = towers[k].head<2>();
+      span.to_en = towers[k + 1].head<2>();
+      span.support_poles = false;
+      if (span.from_en == span.to_en) {
+        where.fail(feature + ": towers " + std::to_string(k + 1) + " and " +
+                   std::to_string(k + 2) + " coincide");
+      }
+      add_span(std::move(span), where.path());
+    }
+    if (!spec.support_poles) return;
+    for (std::size_t k = 0; k < towers.size(); ++k) {
+      Cylinder pole;
+      pole.surface = SurfaceClass::pole;
+      pole.id = name + "/tower-" + std::to_string(k + 1);
+      pole.base_enu_m = towers[k];
+      pole.height_m = spec.support_height_1_m;
+      pole.radius_m = 0.5 * spec.pole_diameter_m;
+      pole.reflectivity = spec.pole_reflectivity;
+      scenario_.scene.poles.push_back(std::move(pole));
+    }
   }
 
   static std::vector<ConductorOffset> read_layout(const YamlValue& value) {

@@ -1,10 +1,10 @@
 #pragma once
-// The C entry points of libowsim_gdal.so (io/scenario/gdal/dem_module.cpp), the optional module that
-// reads elevation rasters with GDAL. The loader (io/scenario/dem_terrain.cpp) refuses a module whose
+// The C entry points of libowsim_gdal.so (io/scenario/gdal/gdal_module.cpp), the optional module that
+// reads elevation rasters and line features with GDAL/OGR. The loader (io/scenario/dem_terrain.cpp) refuses a module whose
 // owsim_gdal_module_abi() differs from OWSIM_GDAL_MODULE_ABI.
 #include <cstddef>
 
-#define OWSIM_GDAL_MODULE_ABI 1
+#define OWSIM_GDAL_MODULE_ABI 2
 
 extern "C" {
 
@@ -24,4 +24,15 @@ typedef int (*owsim_dem_read_fn)(const char* path, int whole_file, double lon_mi
                                  double lat_min, double lon_max, double lat_max,
                                  owsim_dem_sink sink, void* sink_context, char* error,
                                  std::size_t error_size);
+
+// Receives one line of a vector file (called once per LineString, and per part of a
+// MultiLineString, in the file's order) as JSON text: {"feature": index in its layer,
+// "properties": {field: number or string, ...}, "coordinates": [[lon, lat], ...]} (WGS-84
+// degrees).
+typedef void (*owsim_line_sink)(void* context, const char* line_json);
+// Reads every line of every layer of the vector file at `path` (GeoJSON, or any format OGR
+// reads), reprojected from its CRS to WGS-84. Returns 0 after calling `sink` for each line (at
+// least one), or non-zero with a one-line message in `error`.
+typedef int (*owsim_lines_read_fn)(const char* path, owsim_line_sink sink, void* sink_context,
+                                   char* error, std::size_t error_size);
 }

@@ -1,5 +1,6 @@
 // libowsim_gdal.so: the one place owsim touches GDAL. Loaded on demand by io/scenario/dem_terrain.cpp
-// when a scenario's terrain is a DEM, so that the owsim executable, libowsim_c.so and the Python
+// when a scenario's terrain is a DEM and by io/scenario/gis_lines.cpp when it reads power lines
+// from GIS files, so that the owsim executable, libowsim_c.so and the Python
 // module never map GDAL and the library tree behind it. The entry points are plain C: no
 // exception crosses them.
 //
@@ -13,7 +14,10 @@
 #include <cpl_conv.h>
 #include <cpl_error.h>
 #include <gdal.h>
+#include <ogr_api.h>
 #include <ogr_srs_api.h>
+
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -24,7 +28,7 @@
 #include <string>
 #include <vector>
 
-#include "io/scenario/dem_module_abi.hpp"
+#include "io/scenario/gdal_module_abi.hpp"
 
 namespace {
 
@@ -159,20 +163,109 @@ void read_dem(const char* path, bool whole_file, double lon_min, double lat_min,
   sink(sink_context, window.ncols, window.nrows, lon_lat_h.data(), valid.data());
 }
 
+
+struct LayerFeatureReleaser {
+  void operator()(void* feature) const { OGR_F_Destroy(feature); }
+};
+using Feature = std::unique_ptr<void, LayerFeatureReleaser>;
+
+nlohmann::json properties_of(OGRFeatureH feature) {
+  nlohmann::json properties = nlohmann::json::object();
+  for (int i = 0; i < OGR_F_GetFieldCount(feature); ++i) {
+    if (!OGR_F_IsFieldSetAndNotNull(feature, i)) continue;
+    OGRFieldDefnH field = OGR_F_GetFieldDefnRef(feature, i);
+    const std::string name = OGR_Fld_GetNameRef(field);
+    switch (OGR_Fld_GetType(field)) {
+      case OFTInteger:
+      case OFTInteger64:
+        properties[name] = OGR_F_GetFieldAsInteger64(feature, i);
+        break;
+      case OFTReal:
+        properties[name] = OGR_F_GetFieldAsDouble(feature, i);
+        break;
+      default:
+        properties[name] = OGR_F_GetFieldAsString(feature, i);
+    }
+  }
+  return properties;
+}
+
+// Every LineString in `geometry` (itself, or the parts of a multi-geometry or collection).
+void collect_lines(OGRGeometryH geometry, std::vector<OGRGeometryH>& lines) {
+  const OGRwkbGeometryType type = wkbFlatten(OGR_G_GetGeometryType(geometry));
+  if (type == wkbLineString) {
+    lines.push_back(geometry);
+  } else if (type == wkbMultiLineString || type == wkbGeometryCollection) {
+    for (int i = 0; i < OGR_G_GetGeometryCount(geometry); ++i) {
+      collect_lines(OGR_G_GetGeometryRef(geometry, i), lines);
+    }
+  }
+}
+
+void read_lines(const char* path, owsim_line_sink sink, void* sink_context) {
+  GDALAllRegister();
+  CPLErrorReset();
+  const Dataset dataset(GDALOpenEx(path, GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr,
+                                   nullptr));
+  if (!dataset) throw std::runtime_error("GDAL/OGR cannot open it" + gdal_reason());
+  const Srs wgs84(OSRNewSpatialReference(nullptr));
+  OSRImportFromEPSG(wgs84.get(), 4326);
+  OSRSetAxisMappingStrategy(wgs84.get(), OAMS_TRADITIONAL_GIS_ORDER);
+  int emitted = 0;
+  for (int l = 0; l < GDALDatasetGetLayerCount(dataset.get()); ++l) {
+    OGRLayerH layer = GDALDatasetGetLayer(dataset.get(), l);
+    OGRSpatialReferenceH declared = OGR_L_GetSpatialRef(layer);
+    Transform to_wgs;
+    if (declared != nullptr) {
+      const Srs source(OSRClone(declared));
+      OSRSetAxisMappingStrategy(source.get(), OAMS_TRADITIONAL_GIS_ORDER);
+      to_wgs.reset(OCTNewCoordinateTransformation(source.get(), wgs84.get()));
+      if (!to_wgs) {
+        throw std::runtime_error("GDAL cannot transform its CRS to WGS-84" + gdal_reason());
+      }
+    }
+    OGR_L_ResetReading(layer);
+    for (int index = 0;; ++index) {
+      const Feature feature(OGR_L_GetNextFeature(layer));
+      if (!feature) break;
+      OGRGeometryH geometry = OGR_F_GetGeometryRef(feature.get());
+      if (geometry == nullptr) continue;
+      if (to_wgs && OGR_G_Transform(geometry, to_wgs.get()) != OGRERR_NONE) {
+        throw std::runtime_error("cannot transform feature " + std::to_string(index) +
+                                 " to WGS-84" + gdal_reason());
+      }
+      std::vector<OGRGeometryH> lines;
+      collect_lines(geometry, lines);
+      const nlohmann::json properties = properties_of(feature.get());
+      for (OGRGeometryH line : lines) {
+        nlohmann::json coordinates = nlohmann::json::array();
+        for (int p = 0; p < OGR_G_GetPointCount(line); ++p) {
+          coordinates.push_back({OGR_G_GetX(line, p), OGR_G_GetY(line, p)});
+        }
+        const nlohmann::json out = {
+            {"feature", index}, {"properties", properties}, {"coordinates", coordinates}};
+        sink(sink_context, out.dump().c_str());
+        ++emitted;
+      }
+    }
+  }
+  if (emitted == 0) throw std::runtime_error("holds no LineString");
+}
+
 }  // namespace
 
 extern "C" __attribute__((visibility("default"))) int owsim_gdal_module_abi(void) {
   return OWSIM_GDAL_MODULE_ABI;
 }
 
-extern "C" __attribute__((visibility("default"))) int owsim_dem_read(
-    const char* path, int whole_file, double lon_min, double lat_min, double lon_max,
-    double lat_max, owsim_dem_sink sink, void* sink_context, char* error,
-    std::size_t error_size) {
+// Runs `body`, turning any exception into status 1 and a one-line message: nothing crosses the
+// C boundary.
+template <typename Body>
+int guarded(char* error, std::size_t error_size, const Body& body) {
   CPLPushErrorHandler(CPLQuietErrorHandler);
   int status = 0;
   try {
-    read_dem(path, whole_file != 0, lon_min, lat_min, lon_max, lat_max, sink, sink_context);
+    body();
   } catch (const std::exception& failure) {
     copy_error(failure.what(), error, error_size);
     status = 1;
@@ -182,4 +275,19 @@ extern "C" __attribute__((visibility("default"))) int owsim_dem_read(
   }
   CPLPopErrorHandler();
   return status;
+}
+
+extern "C" __attribute__((visibility("default"))) int owsim_dem_read(
+    const char* path, int whole_file, double lon_min, double lat_min, double lon_max,
+    double lat_max, owsim_dem_sink sink, void* sink_context, char* error,
+    std::size_t error_size) {
+  return guarded(error, error_size, [&] {
+    read_dem(path, whole_file != 0, lon_min, lat_min, lon_max, lat_max, sink, sink_context);
+  });
+}
+
+extern "C" __attribute__((visibility("default"))) int owsim_lines_read(
+    const char* path, owsim_line_sink sink, void* sink_context, char* error,
+    std::size_t error_size) {
+  return guarded(error, error_size, [&] { read_lines(path, sink, sink_context); });
 }

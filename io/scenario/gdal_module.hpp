@@ -1,0 +1,14 @@
+#pragma once
+// The optional module libowsim_gdal.so (io/scenario/gdal/gdal_module.cpp): GDAL for DEM terrain
+// and GIS power lines, loaded on the first scenario that needs it.
+#include <string_view>
+
+#include "io/files/optional_module.hpp"
+
+namespace owsim {
+
+// The loaded module, its interface version checked. Throws owsim::Error with one line naming
+// what needs it (`purpose`) when it cannot be loaded or is of another interface.
+[[nodiscard]] const OptionalModule& gdal_module(std::string_view purpose);
+
+}  // namespace owsim
