@@ -13,12 +13,22 @@
 #include "io/run/run_checkpoint.hpp"
 #include "io/scenario/scenario_check.hpp"
 #include "io/scenario/scenario_loader.hpp"
+#include "io/trajectory/trajectory_loader.hpp"
 #include "sensor/scan_pattern.hpp"
 
 namespace owsim {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// The recorded trajectory's east/north positions: a DEM is then read for the flight's reach only.
+std::vector<Eigen::Vector2d> recorded_track(const Scenario& scenario, const LocalFrame& frame) {
+  const NavTrack track = load_nav_track(scenario, frame);
+  std::vector<Eigen::Vector2d> positions;
+  positions.reserve(track.position_enu_m.size());
+  for (const Eigen::Vector3d& position : track.position_enu_m) positions.push_back(position.head<2>());
+  return positions;
+}
 
 int worker_count(const SimulationOptions& options) {
   return options.threads > 0 ? options.threads : tbb::info::default_concurrency();
@@ -144,7 +154,7 @@ Simulation::~Simulation() = default;
 Simulation Simulation::open(const std::filesystem::path& scenario_file,
                             const SimulationOptions& options) {
   const auto start = Clock::now();
-  Scenario scenario = load_scenario(scenario_file);
+  Scenario scenario = load_scenario(scenario_file, recorded_track);
   return Simulation(
       std::make_unique<State>(std::move(scenario), options, hash_of_file(scenario_file), start));
 }
@@ -152,7 +162,7 @@ Simulation Simulation::open(const std::filesystem::path& scenario_file,
 Simulation Simulation::from_yaml(std::string_view yaml, const std::filesystem::path& name,
                                  const SimulationOptions& options) {
   const auto start = Clock::now();
-  Scenario scenario = load_scenario_text(yaml, name);
+  Scenario scenario = load_scenario_text(yaml, name, recorded_track);
   return Simulation(
       std::make_unique<State>(std::move(scenario), options, ContentHash::hex_of(yaml), start));
 }

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <iomanip>
 #include <string>
 
 #include "cli_runner.hpp"
@@ -148,6 +149,38 @@ TEST_F(DemRuns, GroundReturnsLieOnTheGeographicDem) {
   const std::string verdict = check("geo", "geo.tif");
   ASSERT_EQ(verdict.rfind("ok ", 0), 0u) << verdict;
   EXPECT_GT(std::stol(verdict.substr(3)), 10000) << verdict;
+}
+
+// A recorded trajectory (CSV, east along n = 0 at 110 m) over the DEM `file`, from e0 to e1.
+CliResult recorded_run(const TempDir& dir, const std::string& file, double e0_m, double e1_m) {
+  std::ofstream track(dir / "track.csv");
+  track << "time_s,lat_deg,lon_deg,h_m,roll_deg,pitch_deg,heading_deg\n";
+  const double metres_per_deg_lon = 111'320.0 * std::cos(48.6881 * M_PI / 180.0);
+  for (int i = 0; i <= 200; ++i) {
+    const double e = e0_m + (e1_m - e0_m) * i / 200.0;
+    track << std::setprecision(12) << 0.1 * i << ",48.6881," << 10.8447 + e / metres_per_deg_lon
+          << ",560,0,0,90\n";
+  }
+  track.close();
+  std::ofstream(dir / "recorded.yaml")
+      << "name: recorded\norigin: {lat: 48.6881, lon: 10.8447, h: 450.0}\n"
+         "trajectory: {file: track.csv, format: csv}\n"
+         "scene:\n  terrain: {dem: " << file << "}\n";
+  return run_cli({"run", (dir / "recorded.yaml").string(), "--no-noise", "--frames", "4",
+                  "--outputs", "points,summary", "--out", (dir / "recorded").string()},
+                 dir.path());
+}
+
+TEST_F(DemRuns, RecordedFlightsReadTheirReachAndMustLieOnTheDem) {
+  const CliResult result = recorded_run(dir_, "utm.tif", -600.0, 200.0);
+  ASSERT_EQ(result.exit_status, 0) << result.err;
+  const std::string verdict = check("recorded", "utm.tif");
+  ASSERT_EQ(verdict.rfind("ok ", 0), 0u) << verdict;
+  fs::remove_all(dir_ / "recorded");
+  const CliResult off = recorded_run(dir_, "utm.tif", 1500.0, 3500.0);
+  EXPECT_NE(off.exit_status, 0);
+  EXPECT_NE(off.err.find("does not cover the flight"), std::string::npos) << off.err;
+  EXPECT_FALSE(fs::exists(dir_ / "recorded"));
 }
 
 TEST_F(DemRuns, BadDemsGiveOneLineAndNoOutput) {

@@ -76,8 +76,9 @@ enum class Height {
 
 class ScenarioReader {
  public:
-  ScenarioReader(const YamlSource& source, const std::filesystem::path& path)
-      : source_(source), folder_(path.parent_path()) {
+  ScenarioReader(const YamlSource& source, const std::filesystem::path& path,
+                 const RecordedTrack& recorded_track)
+      : source_(source), folder_(path.parent_path()), recorded_track_(recorded_track) {
     scenario_.path = path;
   }
 
@@ -512,19 +513,25 @@ class ScenarioReader {
     terrain.kind = TerrainKind::grid;
   }
 
-  // terrain.dem: the DEM's posts within the flight's reach (a waypoint route widened by the
-  // counter's timeout range; a recorded trajectory is read by io/trajectory after the scenario,
-  // so then the whole raster is read), and the route must lie on it.
+  // terrain.dem: the DEM's posts within the flight's reach (the route, or the recorded track
+  // when the caller can read it, widened by the counter's timeout range; else the whole raster),
+  // and the flight must lie on it.
   void read_dem(const YamlValue& value) {
     const std::string name = value.text();
     if (name.empty()) value.fail("expected a file name, got ''");
     const std::filesystem::path file = resolve(name);
     Terrain& terrain = scenario_.scene.terrain;
     const TrajectorySpec& route = scenario_.trajectory;
-    std::optional<Eigen::AlignedBox2d> reach;
+    std::vector<Eigen::Vector2d> flight;
     if (route.source == TrajectorySpec::Source::waypoints) {
+      for (const Eigen::Vector3d& point : route.waypoints_enu_m) flight.push_back(point.head<2>());
+    } else if (recorded_track_) {
+      flight = recorded_track_(scenario_, *frame_);
+    }
+    std::optional<Eigen::AlignedBox2d> reach;
+    if (!flight.empty()) {
       reach.emplace();
-      for (const Eigen::Vector3d& point : route.waypoints_enu_m) reach->extend(point.head<2>());
+      for (const Eigen::Vector2d& point : flight) reach->extend(point);
       const double range_m = timeout_range_m(scenario_.receiver.counter);
       reach->min().array() -= range_m;
       reach->max().array() += range_m;
@@ -535,9 +542,9 @@ class ScenarioReader {
       value.fail(error.what());
     }
     terrain.kind = TerrainKind::dem;
-    for (const Eigen::Vector3d& point : route.waypoints_enu_m) {
+    for (const Eigen::Vector2d& point : flight) {
       if (!terrain.dem.covers(point.x(), point.y())) {
-        value.fail(file.string() + ": does not cover the flight (waypoint at e = " +
+        value.fail(file.string() + ": does not cover the flight (at e = " +
                    number_text(point.x()) + ", n = " + number_text(point.y()) + " m)");
       }
     }
@@ -797,21 +804,23 @@ class ScenarioReader {
   std::filesystem::path folder_;
   Scenario scenario_;
   std::optional<LocalFrame> frame_;
+  const RecordedTrack& recorded_track_;
   std::map<std::string, int> ids_;  // object id → line of first use
 };
 
 }  // namespace
 
-Scenario load_scenario(const std::filesystem::path& path) {
+Scenario load_scenario(const std::filesystem::path& path, const RecordedTrack& recorded_track) {
   YamlSource source = YamlSource::from_file(path);
   source.check_ranges_with(out_of_range_problem);
-  return ScenarioReader(source, path).read();
+  return ScenarioReader(source, path, recorded_track).read();
 }
 
-Scenario load_scenario_text(std::string_view yaml, const std::filesystem::path& path) {
+Scenario load_scenario_text(std::string_view yaml, const std::filesystem::path& path,
+                            const RecordedTrack& recorded_track) {
   YamlSource source = YamlSource::from_text(yaml, path.string());
   source.check_ranges_with(out_of_range_problem);
-  return ScenarioReader(source, path).read();
+  return ScenarioReader(source, path, recorded_track).read();
 }
 
 }  // namespace owsim

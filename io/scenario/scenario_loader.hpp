@@ -21,18 +21,30 @@
 // and longitude on the terrain, found by iterating its ellipsoidal height (to 1 µm).
 // Relative paths (trajectory.file, scene.terrain.grid) are resolved against the scenario
 // file's folder.
+#include <Eigen/Core>
 #include <filesystem>
+#include <functional>
 #include <string_view>
+#include <vector>
 
+#include "geometry/geodetic_frame.hpp"
 #include "io/scenario/scenario.hpp"
 
 namespace owsim {
 
+// The east/north positions of a recorded trajectory (trajectory.file), which io/trajectory reads
+// (it depends on this module): with it, a DEM under a recorded flight is read for the flight's
+// reach only and checked to cover it; without it (empty), such a DEM is read whole.
+using RecordedTrack =
+    std::function<std::vector<Eigen::Vector2d>(const Scenario&, const LocalFrame&)>;
+
 // Reads and validates a scenario file.
-[[nodiscard]] Scenario load_scenario(const std::filesystem::path& path);
+[[nodiscard]] Scenario load_scenario(const std::filesystem::path& path,
+                                     const RecordedTrack& recorded_track = {});
 
 // The same from text in memory: `path` names it in errors, gives the default name (its stem)
 // and anchors relative paths; the file need not exist.
-[[nodiscard]] Scenario load_scenario_text(std::string_view yaml, const std::filesystem::path& path);
+[[nodiscard]] Scenario load_scenario_text(std::string_view yaml, const std::filesystem::path& path,
+                                          const RecordedTrack& recorded_track = {});
 
 }  // namespace owsim
