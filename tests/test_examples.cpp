@@ -44,7 +44,7 @@ constexpr const char* kTrajectoryHeader =
 
 const fs::path kExamples = fs::path(OWSIM_SOURCE_DIR) / "examples";
 const std::vector<std::string> kExampleNames = {"single_span", "pylon_line", "corridor",
-                                                "hellsim_flight"};
+                                                "hellsim_flight", "real_corridor"};
 
 fs::path example(const std::string& name) { return kExamples / (name + ".yaml"); }
 
@@ -70,7 +70,7 @@ std::size_t count_of(const Scene& scene, SurfaceClass surface) {
                     [&](const Cylinder& c) { return c.surface == surface; }));
 }
 
-TEST(Examples, FolderHoldsTheFourExamples) {
+TEST(Examples, FolderHoldsTheFiveExamples) {
   std::set<std::string> found;
   for (const auto& entry : fs::directory_iterator(kExamples)) {
     if (entry.path().extension() == ".yaml") found.insert(entry.path().stem().string());
@@ -282,6 +282,29 @@ TEST(Examples, HellsimFlightTurnsThroughNorthNearTheOrigin) {
   }
   EXPECT_EQ(crossings, 1);
   EXPECT_NEAR(path_m / duration_s, 40.0, 1.0) << "m/s";
+}
+
+// The real corridor's data is what examples/data/make_real_corridor.py writes, and the example
+// holds its two GIS lines' spans and towers on the DEM.
+TEST(Examples, RealCorridorIsItsScriptsDataAsTwoGisLinesOnADem) {
+  const TempDir dir("owsim_real_corridor_script");
+  fs::copy_file(kExamples / "data" / "make_real_corridor.py", dir / "make_real_corridor.py");
+  const std::string command = std::string(OWSIM_PYTHON) + " " + (dir / "make_real_corridor.py").string();
+  ASSERT_EQ(std::system(command.c_str()), 0) << command;
+  for (const char* file : {"real_corridor_dem.asc", "real_corridor_dem.prj",
+                           "real_corridor_lines.geojson"}) {
+    EXPECT_EQ(test::read_whole_file(dir / file),
+              test::read_whole_file(kExamples / "data" / file))
+        << file;
+  }
+  const Scenario scenario = load_scenario(example("real_corridor"));
+  EXPECT_EQ(scenario.scene.terrain.kind, TerrainKind::dem);
+  EXPECT_EQ(scenario.scene.spans.size(), 5u + 8u);
+  EXPECT_EQ(scenario.scene.spans.front().id, "hv/1");
+  EXPECT_EQ(scenario.scene.spans.back().id, "mv/8");
+  EXPECT_EQ(scenario.scene.poles.size(), 6u + 9u);
+  const Scene scene = build_scene(scenario);
+  EXPECT_EQ(scene.conductors.size(), 5u * 7u + 8u * 3u);
 }
 
 // The bundled file is what examples/data/make_hellsim_turn.py writes (every number to within

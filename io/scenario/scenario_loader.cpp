@@ -622,7 +622,8 @@ class ScenarioReader {
   // towers): span k of line L is "L/k" (k from 1), its tower poles "L/tower-k" are shared by the
   // spans that meet there. L is the feature's `name` property, else the entry's id (with "-i" for
   // the i-th line when the file holds several), else the file's stem with "-i". A feature's
-  // properties layout, support_height_m, lowest_point_m and diameter_mm override the entry's.
+  // properties layout, support_height_m, lowest_point_m, diameter_mm and pole_diameter_m override
+  // the entry's.
   void read_power_lines(const YamlValue& value) {
     YamlMap map(value);
     const YamlValue file_value = map.require("file");
@@ -698,6 +699,7 @@ class ScenarioReader {
     }
     if (const auto s = number("lowest_point_m")) spec.lowest_point_m = *s;
     if (const auto d = number("diameter_mm")) spec.conductor_diameter_m = *d / 1000.0;
+    if (const auto d = number("pole_diameter_m")) spec.pole_diameter_m = *d;
   }
 
   // The spans between consecutive towers, and one pole per tower when the line has supports.
