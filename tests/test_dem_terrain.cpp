@@ -171,6 +171,16 @@ CliResult recorded_run(const TempDir& dir, const std::string& file, double e0_m,
                  dir.path());
 }
 
+// EGM96 heights (a compound CRS, UTM + EPSG:5773) are turned into ellipsoidal heights with PROJ's
+// geoid grid: ~47 m apart here, so a DEM taken as ellipsoidal would miss the oracle by that.
+TEST_F(DemRuns, GeoidHeightsAreConvertedToEllipsoidalHeights) {
+  const CliResult result = run("egm96.tif", "egm96");
+  ASSERT_EQ(result.exit_status, 0) << result.err;
+  const std::string verdict = check("egm96", "egm96.tif");
+  ASSERT_EQ(verdict.rfind("ok ", 0), 0u) << verdict;
+  EXPECT_GT(std::stol(verdict.substr(3)), 10000) << verdict;
+}
+
 TEST_F(DemRuns, RecordedFlightsReadTheirReachAndMustLieOnTheDem) {
   const CliResult result = recorded_run(dir_, "utm.tif", -600.0, 200.0);
   ASSERT_EQ(result.exit_status, 0) << result.err;

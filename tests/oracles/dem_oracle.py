@@ -2,16 +2,20 @@
 
     dem_oracle.py make DIR LAT LON      writes DIR/utm.tif (projected, the origin's UTM zone, 10 m
                                         cells), DIR/geo.tif (EPSG:4326, 0.0001° cells), each with a
-                                        NODATA patch, and DIR/nocrs.tif (no CRS), around LAT, LON
+                                        NODATA patch, DIR/egm96.tif (utm.tif's values as EGM96
+                                        heights: UTM + EPSG:5773) and DIR/nocrs.tif (no CRS),
+                                        around LAT, LON
     dem_oracle.py check POINTS RASTER   every ground return of POINTS (points.csv) against the
                                         raster's own bilinear interpolation at its latitude and
-                                        longitude (GDAL's transform to the raster's CRS); prints
+                                        longitude (GDAL's transform to the raster's CRS), turned
+                                        into an ellipsoidal height by GDAL/PROJ; prints
                                         "ok <ground returns> <largest |Δh| in mm>" or fails
 
 The surface owsim traces is two planar triangles per cell between the posts; bilinear
 interpolation differs from it by at most a quarter of the cell's twist |h00 + h11 − h01 − h10|,
 so each return's bound is that plus 2 mm (float rounding of the traced ray, the reprojection).
-Heights are ellipsoidal: the rasters declare no vertical datum.
+Heights are ellipsoidal where a raster declares no vertical datum; EGM96 heights are converted
+with PROJ's geoid grid (Debian's proj-data).
 """
 import csv
 import math
@@ -66,6 +70,11 @@ def make(folder, lat, lon):
     hole = lambda r, c: 420 <= r < 440 and 420 <= c < 440
     write(f"{folder}/utm.tif", utm, cx - half, cy + half, 10.0, -10.0, cells, cells,
           lambda x, y: height_model(x - cx, y - cy), hole)
+    compound = osr.SpatialReference()
+    compound.SetFromUserInput(f"EPSG:{32600 + zone}+5773")
+    compound.SetAxisMappingStrategy(osr.OAMS_TRADITIONAL_GIS_ORDER)
+    write(f"{folder}/egm96.tif", compound, cx - half, cy + half, 10.0, -10.0, cells, cells,
+          lambda x, y: height_model(x - cx, y - cy) - 47.0, hole)
     write(f"{folder}/nocrs.tif", None, cx - half, cy + half, 10.0, -10.0, 20, 20,
           lambda x, y: 450.0, lambda r, c: False)
     step = 0.0001
@@ -78,14 +87,20 @@ def make(folder, lat, lon):
           lambda r, c: 250 <= r < 270 and 300 <= c < 330)
 
 
-def bilinear(dataset, lat, lon):
-    """GDAL's own bilinear interpolation at (lat, lon), and the cell's twist bound."""
+def transforms(dataset):
+    """WGS-84 → the raster's CRS (2-D), and the raster's CRS → WGS-84 ellipsoidal (3-D)."""
     srs = dataset.GetSpatialRef()
     srs.SetAxisMappingStrategy(osr.OAMS_TRADITIONAL_GIS_ORDER)
     wgs84 = osr.SpatialReference()
     wgs84.ImportFromEPSG(4979)
     wgs84.SetAxisMappingStrategy(osr.OAMS_TRADITIONAL_GIS_ORDER)
-    x, y, _ = osr.CoordinateTransformation(wgs84, srs).TransformPoint(lon, lat, 0.0)
+    return osr.CoordinateTransformation(wgs84, srs), osr.CoordinateTransformation(srs, wgs84)
+
+
+def bilinear(dataset, to_raster, to_wgs84, lat, lon):
+    """GDAL's own bilinear interpolation at (lat, lon) as an ellipsoidal height, and the cell's
+    twist bound."""
+    x, y, _ = to_raster.TransformPoint(lon, lat, 0.0)
     gt = dataset.GetGeoTransform()
     col = (x - gt[0]) / gt[1] - 0.5
     row = (y - gt[3]) / gt[5] - 0.5
@@ -102,18 +117,21 @@ def bilinear(dataset, lat, lon):
     if abs(value - by_hand) > 1e-3:
         sys.exit(f"GDAL's bilinear {value} and the formula's {by_hand} disagree at {lat}, {lon}")
     twist = abs(window[0][0] + window[1][1] - window[0][1] - window[1][0])
-    return value, twist / 4.0
+    # The raster's height at that point, as a WGS-84 ellipsoidal height.
+    _, _, h = to_wgs84.TransformPoint(x, y, value)
+    return h, twist / 4.0
 
 
 def check(points_path, raster_path):
     dataset = gdal.Open(raster_path)
+    to_raster, to_wgs84 = transforms(dataset)
     count, worst = 0, 0.0
     with open(points_path, newline="") as f:
         for row in csv.DictReader(f):
             if row["class"] != "ground":
                 continue
             lat, lon, h = float(row["lat_deg"]), float(row["lon_deg"]), float(row["h_m"])
-            expected, bound = bilinear(dataset, lat, lon)
+            expected, bound = bilinear(dataset, to_raster, to_wgs84, lat, lon)
             error = abs(h - expected)
             if error > bound + 0.002:
                 sys.exit(f"ground return at {lat}, {lon}: h {h} vs bilinear {expected} "

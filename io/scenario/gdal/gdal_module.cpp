@@ -8,9 +8,10 @@
 // geotransform maps pixel (col + 0.5, row + 0.5) to the centre of cell (col, row)). Their
 // coordinates in the file's CRS, with the cell's value as the vertical coordinate, are
 // transformed by GDAL/PROJ to WGS-84 longitude, latitude and ellipsoidal height (EPSG:4979):
-// a file whose CRS has a vertical datum (a geoid height, say) is converted where PROJ has the
-// grid, and refused with PROJ's reason where it does not; a file with a horizontal CRS only has
-// its values taken as ellipsoidal heights (PROJ passes them through).
+// a file whose CRS has a vertical datum (EGM96 heights, say; Debian's proj-data holds the EGM96
+// grid) is converted where PROJ has the grid, and refused with PROJ's reason where it does not
+// (no ballpark transformations); a file with a horizontal CRS only has its values taken as
+// ellipsoidal heights (PROJ passes them through).
 #include <cpl_conv.h>
 #include <cpl_error.h>
 #include <gdal.h>
@@ -110,9 +111,14 @@ void read_dem(const char* path, bool whole_file, double lon_min, double lat_min,
   const Srs wgs84(OSRNewSpatialReference(nullptr));
   OSRImportFromEPSG(wgs84.get(), 4979);
   OSRSetAxisMappingStrategy(wgs84.get(), OAMS_TRADITIONAL_GIS_ORDER);
-  const Transform to_wgs(OCTNewCoordinateTransformation(source.get(), wgs84.get()));
+  // No ballpark transformation: a vertical datum whose grid PROJ lacks is refused, not ignored.
+  OGRCoordinateTransformationOptionsH options = OCTNewCoordinateTransformationOptions();
+  OCTCoordinateTransformationOptionsSetBallparkAllowed(options, FALSE);
+  const Transform to_wgs(OCTNewCoordinateTransformationEx(source.get(), wgs84.get(), options));
+  OCTDestroyCoordinateTransformationOptions(options);
   if (!to_wgs) {
-    throw std::runtime_error("GDAL cannot transform its CRS to WGS-84" + gdal_reason());
+    throw std::runtime_error("GDAL/PROJ cannot transform its CRS to WGS-84 exactly (a vertical "
+                             "datum's grid missing?)" + gdal_reason());
   }
   const int width = GDALGetRasterXSize(dataset.get()), height = GDALGetRasterYSize(dataset.get());
   Window window{0, 0, width, height};
