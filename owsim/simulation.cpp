@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <mutex>
 #include <string>
 #include <utility>
@@ -21,12 +22,19 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// The recorded trajectory's east/north positions: a DEM is then read for the flight's reach only.
+// The east/north positions of the recorded trajectory over the flight's time window (start_s,
+// duration_s) and one second around: a DEM is then read for the flight's reach only.
 std::vector<Eigen::Vector2d> recorded_track(const Scenario& scenario, const LocalFrame& frame) {
   const NavTrack track = load_nav_track(scenario, frame);
+  const TrajectorySpec& spec = scenario.trajectory;
+  const double first_s = spec.start_s - 1.0;
+  const double last_s = spec.duration_s ? spec.start_s + *spec.duration_s + 1.0
+                                        : std::numeric_limits<double>::infinity();
   std::vector<Eigen::Vector2d> positions;
-  positions.reserve(track.position_enu_m.size());
-  for (const Eigen::Vector3d& position : track.position_enu_m) positions.push_back(position.head<2>());
+  for (std::size_t i = 0; i < track.position_enu_m.size() && i < track.time_s.size(); ++i) {
+    if (track.time_s[i] < first_s || track.time_s[i] > last_s) continue;
+    positions.push_back(track.position_enu_m[i].head<2>());
+  }
   return positions;
 }
 
