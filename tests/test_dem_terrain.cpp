@@ -132,24 +132,21 @@ class DemRuns : public ::testing::Test {
                                           false});
   }
 
+  // Runs over the DEM `raster` into `out` and checks every ground return with the oracle.
+  void expect_ground_on(const std::string& raster, const std::string& out) {
+    const CliResult result = run(raster, out);
+    ASSERT_EQ(result.exit_status, 0) << result.err;
+    const std::string verdict = check(out, raster);
+    ASSERT_EQ(verdict.rfind("ok ", 0), 0u) << verdict;
+    EXPECT_GT(std::stol(verdict.substr(3)), 10000) << verdict;
+  }
+
   TempDir dir_{"owsim_dem"};
 };
 
-TEST_F(DemRuns, GroundReturnsLieOnTheProjectedDem) {
-  const CliResult result = run("utm.tif", "utm");
-  ASSERT_EQ(result.exit_status, 0) << result.err;
-  const std::string verdict = check("utm", "utm.tif");
-  ASSERT_EQ(verdict.rfind("ok ", 0), 0u) << verdict;
-  EXPECT_GT(std::stol(verdict.substr(3)), 10000) << verdict;
-}
+TEST_F(DemRuns, GroundReturnsLieOnTheProjectedDem) { expect_ground_on("utm.tif", "utm"); }
 
-TEST_F(DemRuns, GroundReturnsLieOnTheGeographicDem) {
-  const CliResult result = run("geo.tif", "geo");
-  ASSERT_EQ(result.exit_status, 0) << result.err;
-  const std::string verdict = check("geo", "geo.tif");
-  ASSERT_EQ(verdict.rfind("ok ", 0), 0u) << verdict;
-  EXPECT_GT(std::stol(verdict.substr(3)), 10000) << verdict;
-}
+TEST_F(DemRuns, GroundReturnsLieOnTheGeographicDem) { expect_ground_on("geo.tif", "geo"); }
 
 // A recorded trajectory (CSV, east along n = 0 at 110 m) over the DEM `file`, from e0 to e1.
 CliResult recorded_run(const TempDir& dir, const std::string& file, double e0_m, double e1_m) {
@@ -173,13 +170,7 @@ CliResult recorded_run(const TempDir& dir, const std::string& file, double e0_m,
 
 // EGM96 heights (a compound CRS, UTM + EPSG:5773) are turned into ellipsoidal heights with PROJ's
 // geoid grid: ~47 m apart here, so a DEM taken as ellipsoidal would miss the oracle by that.
-TEST_F(DemRuns, GeoidHeightsAreConvertedToEllipsoidalHeights) {
-  const CliResult result = run("egm96.tif", "egm96");
-  ASSERT_EQ(result.exit_status, 0) << result.err;
-  const std::string verdict = check("egm96", "egm96.tif");
-  ASSERT_EQ(verdict.rfind("ok ", 0), 0u) << verdict;
-  EXPECT_GT(std::stol(verdict.substr(3)), 10000) << verdict;
-}
+TEST_F(DemRuns, GeoidHeightsAreConvertedToEllipsoidalHeights) { expect_ground_on("egm96.tif", "egm96"); }
 
 TEST_F(DemRuns, RecordedFlightsReadTheirReachAndMustLieOnTheDem) {
   const CliResult result = recorded_run(dir_, "utm.tif", -600.0, 200.0);
