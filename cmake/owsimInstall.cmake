@@ -10,7 +10,7 @@ install(TARGETS owsim owsim_geometry owsim_sensor owsim_engine owsim_io owsim_io
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         INCLUDES DESTINATION include/owsim)
 install(TARGETS owsim_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-install(TARGETS owsim_png owsim_gdal LIBRARY DESTINATION ${OWSIM_MODULE_INSTALL_DIR})
+install(TARGETS owsim_png owsim_gdal owsim_mesh LIBRARY DESTINATION ${OWSIM_MODULE_INSTALL_DIR})
 if(TARGET owsim_mpi)
   install(TARGETS owsim_mpi LIBRARY DESTINATION ${OWSIM_MODULE_INSTALL_DIR})
 endif()

@@ -15,7 +15,7 @@ void BruteForceTracer::trace(const PulseRay& ray, PulseCandidates& out) const {
   const double max_range = timeout_range_m(receiver_.counter);
 
   // The nearest solid surface along the central ray; on equal ranges the first found (the lower
-  // cylinder index, cylinders before the ground) stays.
+  // cylinder index, cylinders before meshes before the ground) stays.
   double nearest = max_range;
   std::optional<Candidate> solid;
   for (std::size_t c = 0; c < scene.cylinders.size(); ++c) {
@@ -25,16 +25,26 @@ void BruteForceTracer::trace(const PulseRay& ray, PulseCandidates& out) const {
     solid = cylinder_candidate(ray, scene.cylinders[c], *hit, cylinder_object_index(scene, c),
                                receiver_);
   }
-  const TriangleMesh& mesh = *terrain_mesh_;
-  for (const auto& triangle : mesh.triangles) {
-    const auto hit =
-        intersect_triangle(ray.origin_enu_m, ray.dir_enu, mesh.vertices[triangle[0]],
-                           mesh.vertices[triangle[1]], mesh.vertices[triangle[2]], 0.0, nearest);
-    if (!hit || (solid && hit->t == nearest)) continue;
-    nearest = hit->t;
-    solid = ground_candidate(ray, hit->t, hit->normal, scene.terrain.reflectivity,
-                             ground_object_index(scene), receiver_);
+  const auto triangles_in_front = [&](const TriangleMesh& mesh, const auto& candidate_of) {
+    for (const auto& triangle : mesh.triangles) {
+      const auto hit =
+          intersect_triangle(ray.origin_enu_m, ray.dir_enu, mesh.vertices[triangle[0]],
+                             mesh.vertices[triangle[1]], mesh.vertices[triangle[2]], 0.0, nearest);
+      if (!hit || (solid && hit->t == nearest)) continue;
+      nearest = hit->t;
+      solid = candidate_of(*hit);
+    }
+  };
+  for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+    triangles_in_front(scene.meshes[m].mesh, [&](const TriangleHit& hit) {
+      return mesh_candidate(ray, hit.t, hit.normal, scene.meshes[m], mesh_object_index(scene, m),
+                            receiver_);
+    });
   }
+  triangles_in_front(*terrain_mesh_, [&](const TriangleHit& hit) {
+    return ground_candidate(ray, hit.t, hit.normal, scene.terrain.reflectivity,
+                            ground_object_index(scene), receiver_);
+  });
   if (solid) out.set_solid(*solid);
 
   // Every segment of every conductor in front of the solid hit: the central ray never reaches

@@ -124,9 +124,16 @@ EmbreeScene::EmbreeScene(const EmbreeDevice& device, const Scene& scene,
   wires_ = new_scene(device);
   bindings_.reserve(scene.conductors.size());
   for (std::size_t i = 0; i < scene.conductors.size(); ++i) attach_conductor(device, i);
+  for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+    if (attach_triangles(device, scene.meshes[m].mesh, "adding a mesh") != m) {
+      throw Error("engine: unexpected mesh geometry id");
+    }
+  }
   if (!scene.cylinders.empty()) attach_cylinders(device);
   terrain_mesh_ = scene.terrain.mesh(region);
-  if (!terrain_mesh_.triangles.empty()) attach_terrain(device);
+  if (!terrain_mesh_.triangles.empty()) {
+    terrain_geom_ = attach_triangles(device, terrain_mesh_, "adding the terrain");
+  }
   rtcCommitScene(solids_);
   rtcCommitScene(wires_);
   device.check("building the scene");
@@ -187,29 +194,30 @@ void EmbreeScene::attach_cylinders(const EmbreeDevice& device) {
   device.check("adding poles and trees");
 }
 
-void EmbreeScene::attach_terrain(const EmbreeDevice& device) {
+unsigned EmbreeScene::attach_triangles(const EmbreeDevice& device, const TriangleMesh& mesh,
+                                       const char* what) {
   RTCGeometry geometry = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
   auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0,
                                                                RTC_FORMAT_FLOAT3, 3 * sizeof(float),
-                                                               terrain_mesh_.vertices.size()));
-  for (std::size_t v = 0; v < terrain_mesh_.vertices.size(); ++v) {
+                                                               mesh.vertices.size()));
+  for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
     for (int axis = 0; axis < 3; ++axis) {
-      vertices[3 * v + static_cast<std::size_t>(axis)] =
-          static_cast<float>(terrain_mesh_.vertices[v][axis]);
+      vertices[3 * v + static_cast<std::size_t>(axis)] = static_cast<float>(mesh.vertices[v][axis]);
     }
   }
-  auto* triangles = static_cast<unsigned*>(
-      rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                              3 * sizeof(unsigned), terrain_mesh_.triangles.size()));
-  for (std::size_t t = 0; t < terrain_mesh_.triangles.size(); ++t) {
+  auto* triangles = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+      geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
+      mesh.triangles.size()));
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
     for (std::size_t corner = 0; corner < 3; ++corner) {
-      triangles[3 * t + corner] = terrain_mesh_.triangles[t][corner];
+      triangles[3 * t + corner] = mesh.triangles[t][corner];
     }
   }
   rtcCommitGeometry(geometry);
-  terrain_geom_ = rtcAttachGeometry(solids_, geometry);
+  const unsigned geom_id = rtcAttachGeometry(solids_, geometry);
   rtcReleaseGeometry(geometry);
-  device.check("adding the terrain");
+  device.check(what);
+  return geom_id;
 }
 
 }  // namespace owsim

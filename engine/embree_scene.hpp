@@ -2,8 +2,10 @@
 // The scene as Embree sees it (DESIGN.md "Engine decisions"), built once per scenario as two
 // Embree scenes, traced one after the other for each pulse (engine/frame_tracer.hpp):
 //   solids  — what stops the central ray:
+//     meshes     — one triangle geometry per mesh object (buildings, lattice towers);
 //     cylinders  — one USER geometry (poles and trees), intersected in double precision;
 //     terrain    — one triangle mesh over the region the sensor can reach;
+//     a triangle hit is re-intersected in double (engine/frame_tracer.cpp);
 //   wires   — conductors, one FLAT_LINEAR_CURVE geometry each, its radius the *capture radius*
 //             r_wire + r_beam(max range) (plus a float-safety margin). Embree tests a flat linear
 //             segment in the plane across the ray: a hit is exactly "the ray passes within the
@@ -43,7 +45,7 @@ class EmbreeScene {
   EmbreeScene(const EmbreeScene&) = delete;
   EmbreeScene& operator=(const EmbreeScene&) = delete;
 
-  [[nodiscard]] RTCScene solids() const { return solids_; }  // cylinders and terrain
+  [[nodiscard]] RTCScene solids() const { return solids_; }  // meshes, cylinders and terrain
   [[nodiscard]] RTCScene wires() const { return wires_; }    // conductors
   [[nodiscard]] const Scene& scene() const { return *objects_; }
   [[nodiscard]] const ReceiverParams& receiver() const { return receiver_; }
@@ -54,15 +56,16 @@ class EmbreeScene {
   // so float rounding of a reported segment depth cannot hide a segment in front of the solid.
   [[nodiscard]] static float wire_search_end(double solid_range_m);
 
-  // Geometry ids: in wires(), conductor i is geomID i; in solids(), the cylinders, then the
-  // terrain (RTC_INVALID_GEOMETRY_ID when absent).
+  // Geometry ids: in wires(), conductor i is geomID i; in solids(), mesh m is geomID m, then
+  // come the cylinders and the terrain (RTC_INVALID_GEOMETRY_ID when absent).
   [[nodiscard]] unsigned cylinders_geom_id() const { return cylinders_geom_; }
   [[nodiscard]] unsigned terrain_geom_id() const { return terrain_geom_; }
 
  private:
   void attach_conductor(const EmbreeDevice& device, std::size_t index);
   void attach_cylinders(const EmbreeDevice& device);
-  void attach_terrain(const EmbreeDevice& device);
+  unsigned attach_triangles(const EmbreeDevice& device, const TriangleMesh& mesh,
+                            const char* what);
 
   const Scene* objects_;
   ReceiverParams receiver_;

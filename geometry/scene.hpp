@@ -1,9 +1,11 @@
 #pragma once
 // The scene the engine traces (SENSOR-SPEC §6, DESIGN.md "Engine decisions"): conductors as
-// polylines sampled from their catenaries, poles and trees as vertical cylinders, and the
-// terrain. Plain values in local ENU metres from the scenario origin; the scenario loader fills
+// polylines sampled from their catenaries, poles and trees as vertical cylinders, buildings and
+// lattice towers as triangle meshes, and the terrain. Plain values in local ENU metres from the scenario origin; the scenario loader fills
 // it (geometry/span.hpp, geometry/forest.hpp), the engine only reads it.
 #include <Eigen/Core>
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -11,13 +13,20 @@
 #include <vector>
 
 #include "geometry/terrain.hpp"
+#include "geometry/triangle_mesh.hpp"
 
 namespace owsim {
 
-// What a return hit, as the detector classes it (SENSOR-SPEC §6, ch. 1).
-enum class SurfaceClass : std::uint8_t { wire, pole, tree, ground };
+// What a return hit, as the detector classes it (SENSOR-SPEC §6, ch. 1). The codes are points.csv's
+// class codes and the C API's OWSIM_CLASS_*: new classes are added at the end.
+enum class SurfaceClass : std::uint8_t { wire, pole, tree, ground, building };
 
-// "wire", "pole", "tree", "ground" (the `class` column of INTERFACE.md)
+inline constexpr std::size_t kSurfaceClassCount = 5;
+inline constexpr std::array<SurfaceClass, kSurfaceClassCount> kSurfaceClasses = {
+    SurfaceClass::wire, SurfaceClass::pole, SurfaceClass::tree, SurfaceClass::ground,
+    SurfaceClass::building};
+
+// "wire", "pole", "tree", "ground", "building" (the `class` column of INTERFACE.md)
 [[nodiscard]] constexpr std::string_view to_string(SurfaceClass surface) {
   switch (surface) {
     case SurfaceClass::wire:
@@ -28,16 +37,17 @@ enum class SurfaceClass : std::uint8_t { wire, pole, tree, ground };
       return "tree";
     case SurfaceClass::ground:
       return "ground";
+    case SurfaceClass::building:
+      return "building";
   }
   return "ground";
 }
 
 [[nodiscard]] constexpr std::optional<SurfaceClass> surface_class_from_string(
     std::string_view name) {
-  if (name == "wire") return SurfaceClass::wire;
-  if (name == "pole") return SurfaceClass::pole;
-  if (name == "tree") return SurfaceClass::tree;
-  if (name == "ground") return SurfaceClass::ground;
+  for (const SurfaceClass surface : kSurfaceClasses) {
+    if (name == to_string(surface)) return surface;
+  }
   return std::nullopt;
 }
 
@@ -59,21 +69,51 @@ struct Cylinder {
   double reflectivity = 0.3;
 };
 
+// A placed triangle mesh (a building, a lattice tower): its triangles in local ENU metres. The
+// central ray stops on it like on the ground; incidence comes from the triangle's normal.
+struct MeshObject {
+  std::string id;
+  SurfaceClass surface = SurfaceClass::building;  // building, pole or tree
+  TriangleMesh mesh;
+  double reflectivity = 0.3;
+};
+
 struct Scene {
   std::vector<Conductor> conductors;
   std::vector<Cylinder> cylinders;
+  std::vector<MeshObject> meshes;
   Terrain terrain;
 };
 
+// How many objects the scene names before the terrain: conductors, cylinders and meshes.
+[[nodiscard]] inline std::size_t named_object_count(const Scene& scene) {
+  return scene.conductors.size() + scene.cylinders.size() + scene.meshes.size();
+}
+
 // The id of every object a return can belong to, by object index: conductors, then cylinders,
-// then "terrain" (the order of sensor/pulse_candidates.hpp's object indices).
+// then meshes, then "terrain" (the order of sensor/pulse_candidates.hpp's object indices).
 [[nodiscard]] inline std::vector<std::string> object_ids(const Scene& scene) {
   std::vector<std::string> ids;
-  ids.reserve(scene.conductors.size() + scene.cylinders.size() + 1);
+  ids.reserve(named_object_count(scene) + 1);
   for (const Conductor& conductor : scene.conductors) ids.push_back(conductor.id);
   for (const Cylinder& cylinder : scene.cylinders) ids.push_back(cylinder.id);
+  for (const MeshObject& mesh : scene.meshes) ids.push_back(mesh.id);
   ids.emplace_back("terrain");
   return ids;
+}
+
+// The class and the id of named object `object` (object < named_object_count(scene)).
+[[nodiscard]] inline SurfaceClass named_object_class(const Scene& scene, std::size_t object) {
+  if (object < scene.conductors.size()) return SurfaceClass::wire;
+  object -= scene.conductors.size();
+  if (object < scene.cylinders.size()) return scene.cylinders[object].surface;
+  return scene.meshes[object - scene.cylinders.size()].surface;
+}
+[[nodiscard]] inline const std::string& named_object_id(const Scene& scene, std::size_t object) {
+  if (object < scene.conductors.size()) return scene.conductors[object].id;
+  object -= scene.conductors.size();
+  if (object < scene.cylinders.size()) return scene.cylinders[object].id;
+  return scene.meshes[object - scene.cylinders.size()].id;
 }
 
 }  // namespace owsim

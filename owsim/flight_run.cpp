@@ -50,6 +50,15 @@ nlohmann::json run_fingerprint(const FlightSetup& setup, const SimulationOptions
     terrain.add(dem.valid.data(), dem.valid.size());
     run["terrain_dem"] = terrain.hex();
   }
+  if (!setup.scene.meshes.empty()) {
+    ContentHash meshes;
+    for (const MeshObject& mesh : setup.scene.meshes) {
+      meshes.add(mesh.mesh.vertices.data(), mesh.mesh.vertices.size() * sizeof(Eigen::Vector3d));
+      meshes.add(mesh.mesh.triangles.data(),
+                 mesh.mesh.triangles.size() * sizeof(mesh.mesh.triangles.front()));
+    }
+    run["scene_meshes"] = meshes.hex();
+  }
   return run;
 }
 

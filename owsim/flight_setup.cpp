@@ -45,6 +45,11 @@ const Scene& checked_near_origin(const Scene& scene, const std::string& scenario
     require_near_origin(cylinder.base_enu_m + Eigen::Vector3d(0, 0, cylinder.height_m),
                         [&] { return scenario + ": scene object '" + cylinder.id + "'"; });
   }
+  for (const MeshObject& mesh : scene.meshes) {
+    for (const auto& vertex : mesh.mesh.vertices) {
+      require_near_origin(vertex, [&] { return scenario + ": scene object '" + mesh.id + "'"; });
+    }
+  }
   return scene;
 }
 
@@ -165,6 +170,9 @@ Eigen::AlignedBox2d scene_extent(const Scene& scene) {
     for (const auto& point : conductor.points_enu_m) box.extend(point.head<2>());
   }
   for (const Cylinder& cylinder : scene.cylinders) box.extend(cylinder.base_enu_m.head<2>());
+  for (const MeshObject& mesh : scene.meshes) {
+    for (const auto& vertex : mesh.mesh.vertices) box.extend(vertex.head<2>());
+  }
   return box;
 }
 

@@ -238,7 +238,11 @@ PYBIND11_MODULE(owsim, m) {
   using namespace owsim;
   m.doc() = "owsim: the MilOWS / HELLAS obstacle-warning LiDAR simulator (docs/embedding.md)";
   m.attr("__version__") = version_string;
-  m.attr("CLASS_NAMES") = py::make_tuple("wire", "pole", "tree", "ground");
+  py::tuple class_names(kSurfaceClassCount);
+  for (std::size_t c = 0; c < kSurfaceClassCount; ++c) {
+    class_names[c] = std::string(to_string(kSurfaceClasses[c]));
+  }
+  m.attr("CLASS_NAMES") = class_names;
   m.attr("UNKNOWN_CLASS") = kUnknownSurface;
 
   py::register_exception_translator([](std::exception_ptr error) {

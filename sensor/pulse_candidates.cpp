@@ -39,14 +39,34 @@ Candidate cylinder_candidate(const PulseRay& ray, const Cylinder& cylinder, cons
                    static_cast<std::uint8_t>(cylinder.surface)};
 }
 
-Candidate ground_candidate(const PulseRay& ray, double range_m, const Eigen::Vector3d& normal,
-                           double reflectivity, std::uint32_t object,
-                           const ReceiverParams& receiver) {
+namespace {
+
+// A central-ray hit on an extended surface: the whole footprint on it (SENSOR-SPEC §7).
+Candidate extended_surface_candidate(const PulseRay& ray, double range_m,
+                                     const Eigen::Vector3d& normal, double reflectivity,
+                                     SurfaceClass surface, std::uint32_t object,
+                                     const ReceiverParams& receiver) {
   const double incidence = surface_incidence_deg(ray.dir_enu, normal);
   const ReturnEnergy energy =
       ground_return_energy(range_m, incidence, reflectivity, receiver.atmosphere);
   return Candidate{range_m, energy.energy_rel, incidence, object,
-                   static_cast<std::uint8_t>(SurfaceClass::ground)};
+                   static_cast<std::uint8_t>(surface)};
+}
+
+}  // namespace
+
+Candidate ground_candidate(const PulseRay& ray, double range_m, const Eigen::Vector3d& normal,
+                           double reflectivity, std::uint32_t object,
+                           const ReceiverParams& receiver) {
+  return extended_surface_candidate(ray, range_m, normal, reflectivity, SurfaceClass::ground,
+                                    object, receiver);
+}
+
+Candidate mesh_candidate(const PulseRay& ray, double range_m, const Eigen::Vector3d& normal,
+                         const MeshObject& mesh, std::uint32_t object,
+                         const ReceiverParams& receiver) {
+  return extended_surface_candidate(ray, range_m, normal, mesh.reflectivity, mesh.surface, object,
+                                    receiver);
 }
 
 void PulseCandidates::offer_wire(const Candidate& candidate) {

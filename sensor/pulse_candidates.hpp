@@ -7,11 +7,12 @@
 //            highest-energy segment among those in front of the solid hit (the tracers offer
 //            only those).
 //   pole / tree — the central ray's hit on the cylinder; footprint from the ray–axis distance.
-//   ground — the central ray's hit; footprint 1.
-// The central ray stops at the nearest solid surface (pole, tree, ground) whether or not that
+//   ground, mesh — the central ray's hit; footprint 1, incidence from the triangle's normal.
+// The central ray stops at the nearest solid surface (pole, tree, mesh, ground) whether or not that
 // surface's echo reaches the threshold; wires beyond it are dropped, wires never occlude.
 //
-// Object indices: conductors 0..C−1, cylinders C..C+Y−1, the ground C+Y (scene_object_count − 1).
+// Object indices: conductors 0..C−1, cylinders C..C+Y−1, meshes C+Y..C+Y+M−1, the ground C+Y+M
+// (named_object_count, geometry/scene.hpp).
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
@@ -32,8 +33,11 @@ struct PulseRay {
 [[nodiscard]] inline std::uint32_t cylinder_object_index(const Scene& scene, std::size_t cylinder) {
   return static_cast<std::uint32_t>(scene.conductors.size() + cylinder);
 }
+[[nodiscard]] inline std::uint32_t mesh_object_index(const Scene& scene, std::size_t mesh) {
+  return static_cast<std::uint32_t>(scene.conductors.size() + scene.cylinders.size() + mesh);
+}
 [[nodiscard]] inline std::uint32_t ground_object_index(const Scene& scene) {
-  return static_cast<std::uint32_t>(scene.conductors.size() + scene.cylinders.size());
+  return static_cast<std::uint32_t>(named_object_count(scene));
 }
 
 // The candidate a wire segment gives, if the beam touches it  (SENSOR-SPEC §7, eq 7.1–7.13)
@@ -48,6 +52,11 @@ struct PulseRay {
 [[nodiscard]] Candidate ground_candidate(const PulseRay& ray, double range_m,
                                          const Eigen::Vector3d& normal, double reflectivity,
                                          std::uint32_t object, const ReceiverParams& receiver);
+// The candidate of a central-ray hit on a mesh's triangle: an extended surface like the ground
+// (SENSOR-SPEC §7 pinned per surface), of the mesh's class.
+[[nodiscard]] Candidate mesh_candidate(const PulseRay& ray, double range_m,
+                                       const Eigen::Vector3d& normal, const MeshObject& mesh,
+                                       std::uint32_t object, const ReceiverParams& receiver);
 
 // The candidates one pulse collects while it is traced: at most kMaxWires conductors (the
 // strongest kept when more are met) and the nearest solid hit. Fixed size: no allocation.

@@ -4,7 +4,7 @@
 # that only optional modules may load, while MODULE (libowsim_png.so) does need OpenImageIO,
 # so the pattern is known to match what it is meant to catch.
 set -eu
-heavy='libOpenImageIO|libopencv|libgdal|libavcodec|libavformat|libhdf5|libpoppler|libmpi|libopen-pal|libpmix'
+heavy='libOpenImageIO|libopencv|libgdal|libassimp|libavcodec|libavformat|libhdf5|libpoppler|libmpi|libopen-pal|libpmix'
 module=$1
 shift
 if ! ldd "$module" | grep -Eq "$heavy"; then

@@ -21,7 +21,7 @@ namespace fs = std::filesystem;
 using owsim::test::TempDir;
 
 const fs::path kExamples = fs::path(OWSIM_SOURCE_DIR) / "examples";
-const char* const kClassNames[] = {"wire", "pole", "tree", "ground"};
+const char* const kClassNames[] = {"wire", "pole", "tree", "ground", "building"};
 
 // printf of a fixed-point cell, with points.csv's one spelling of zero ("0.0000", never "-0.0000").
 std::string fixed(double value, int decimals) {

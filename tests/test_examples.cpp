@@ -187,7 +187,7 @@ TEST_P(Example, RunsIntoTheExpectedFiles) {
   EXPECT_GE(summary["threads"].get<int>(), 1);
   EXPECT_FALSE(summary["version"].get<std::string>().empty());
   std::size_t returns = 0;
-  for (const char* surface : {"wire", "pole", "tree", "ground"}) {
+  for (const char* surface : {"wire", "pole", "tree", "ground", "building"}) {
     returns += summary["returns"][surface].get<std::size_t>();
   }
   EXPECT_EQ(returns, rows);
@@ -196,6 +196,7 @@ TEST_P(Example, RunsIntoTheExpectedFiles) {
   std::vector<std::string> ids;
   for (const Conductor& conductor : scene.conductors) ids.push_back(conductor.id);
   for (const Cylinder& cylinder : scene.cylinders) ids.push_back(cylinder.id);
+  for (const MeshObject& mesh : scene.meshes) ids.push_back(mesh.id);
   ASSERT_EQ(summary["objects"].size(), ids.size());
   for (std::size_t i = 0; i < ids.size(); ++i) EXPECT_EQ(summary["objects"][i]["id"], ids[i]);
 }

@@ -131,6 +131,7 @@ TEST(LasFieldMappings, ClassificationScanAngleAndDate) {
   EXPECT_EQ(las_classification(SurfaceClass::tree), 5);
   EXPECT_EQ(las_classification(SurfaceClass::wire), 14);
   EXPECT_EQ(las_classification(SurfaceClass::pole), 15);
+  EXPECT_EQ(las_classification(SurfaceClass::building), 6);  // ASPRS "Building"
   EXPECT_EQ(las_classification(std::nullopt), 0);
   EXPECT_EQ(las_scan_angle(12.0), 2000);
   EXPECT_EQ(las_scan_angle(-30.0), -5000);

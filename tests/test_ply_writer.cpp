@@ -129,6 +129,7 @@ TEST(PlyHeader, ClassCodes) {
   EXPECT_EQ(ply_class(SurfaceClass::pole), 1);
   EXPECT_EQ(ply_class(SurfaceClass::tree), 2);
   EXPECT_EQ(ply_class(SurfaceClass::ground), 3);
+  EXPECT_EQ(ply_class(SurfaceClass::building), 4);
   EXPECT_EQ(ply_class(std::nullopt), 255);
 }
 

@@ -155,11 +155,12 @@ TEST_F(PointsCsvWriterTest, UnknownClassObjectEnergyAndIncidence) {
 }
 
 TEST_F(PointsCsvWriterTest, EveryClassAndObjectIdFromTheTable) {
-  const std::vector<std::string> ids = {"north/1", "pole 7", "oak, the big one", "say \"hi\""};
+  const std::vector<std::string> ids = {"north/1", "pole 7", "oak, the big one", "say \"hi\"",
+                                        "barn"};
   std::vector<PointRecord> points;
   const SurfaceClass classes[] = {SurfaceClass::wire, SurfaceClass::pole, SurfaceClass::tree,
-                                  SurfaceClass::ground};
-  for (std::uint32_t i = 0; i < 4; ++i) {
+                                  SurfaceClass::ground, SurfaceClass::building};
+  for (std::uint32_t i = 0; i < 5; ++i) {
     PointRecord p = sample_point();
     p.surface = classes[i];
     p.object_index = i;
@@ -169,11 +170,11 @@ TEST_F(PointsCsvWriterTest, EveryClassAndObjectIdFromTheTable) {
   writer.write(points);
   writer.finish();
   const auto lines = read_lines(path());
-  ASSERT_EQ(lines.size(), 5u);
-  const std::string expected_class[] = {"wire", "pole", "tree", "ground"};
+  ASSERT_EQ(lines.size(), 6u);
+  const std::string expected_class[] = {"wire", "pole", "tree", "ground", "building"};
   const std::string expected_object[] = {",north/1,", ",pole 7,", ",\"oak, the big one\",",
-                                         ",\"say \"\"hi\"\"\","};
-  for (std::size_t i = 0; i < 4; ++i) {
+                                         ",\"say \"\"hi\"\"\",", ",barn,"};
+  for (std::size_t i = 0; i < 5; ++i) {
     EXPECT_NE(lines[i + 1].find("," + expected_class[i] + expected_object[i]), std::string::npos)
         << lines[i + 1];
   }

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <random>
 #include <string>
+#include <tuple>
 
 #include "geometry/error.hpp"
 #include "io/run/flight_summary.hpp"
@@ -38,8 +39,8 @@ class SummaryJsonTest : public ::testing::Test {
   fs::path dir_;
 };
 
-// A scene of `wires` conductors and `trees` trees with awkward ids.
-Scene scene_of(int wires, int trees) {
+// A scene of `wires` conductors, `trees` trees and `meshes` buildings with awkward ids.
+Scene scene_of(int wires, int trees, int meshes) {
   Scene scene;
   const char* odd[] = {"a \"quoted\" id", "back\\slash", "tab\there", "nl\nid", "ünïcödé ✓", "\x01"};
   for (int i = 0; i < wires; ++i) {
@@ -49,6 +50,11 @@ Scene scene_of(int wires, int trees) {
   for (int i = 0; i < trees; ++i) {
     scene.cylinders.push_back(
         {"forest/" + std::to_string(i), i % 5 == 0 ? SurfaceClass::pole : SurfaceClass::tree});
+  }
+  for (int i = 0; i < meshes; ++i) {
+    MeshObject& mesh = scene.meshes.emplace_back();
+    mesh.id = "barn \"" + std::to_string(i) + "\"";
+    mesh.surface = i % 4 == 3 ? SurfaceClass::pole : SurfaceClass::building;
   }
   return scene;
 }
@@ -61,7 +67,7 @@ FlightSummary random_summary(std::size_t objects, std::uint64_t seed, int frames
   for (int frame = 0; frame < frames; ++frame) {
     FrameTally tally;
     tally.pulses = 20352;
-    tally.returns_by_class = {rng() % 100, rng() % 100, rng() % 1000, rng() % 10000};
+    tally.returns_by_class = {rng() % 100, rng() % 100, rng() % 1000, rng() % 10000, rng() % 300};
     tally.second_returns = rng() % 50;
     for (int k = 0; k < 40; ++k) {
       const double range = std::pow(10.0, 4.0 * unit(rng) - 1.0);
@@ -83,20 +89,33 @@ std::string oracle_text(const FlightSummary& summary, const Scene& scene,
   head["returns"] = {{"wire", summary.returns_of(SurfaceClass::wire)},
                      {"pole", summary.returns_of(SurfaceClass::pole)},
                      {"tree", summary.returns_of(SurfaceClass::tree)},
-                     {"ground", summary.returns_of(SurfaceClass::ground)}};
-  std::map<std::string, std::pair<int, int>> by_class = {{"wire", {}}, {"pole", {}}, {"tree", {}}};
+                     {"ground", summary.returns_of(SurfaceClass::ground)},
+                     {"building", summary.returns_of(SurfaceClass::building)}};
+  std::map<std::string, std::pair<int, int>> by_class = {
+      {"wire", {}}, {"pole", {}}, {"tree", {}}, {"building", {}}};
   nlohmann::json objects = nlohmann::json::array();
   const auto optional = [](bool seen, double value) {
     return seen ? nlohmann::json(value) : nlohmann::json(nullptr);
   };
   for (std::size_t i = 0; i < summary.objects().size(); ++i) {
     const ObjectTruth& truth = summary.objects()[i];
-    const bool wire = i < scene.conductors.size();
-    const Cylinder* cylinder = wire ? nullptr : &scene.cylinders[i - scene.conductors.size()];
-    const std::string surface(to_string(wire ? SurfaceClass::wire : cylinder->surface));
+    std::string id;
+    SurfaceClass surface_class = SurfaceClass::wire;
+    if (i < scene.conductors.size()) {
+      id = scene.conductors[i].id;
+    } else if (i < scene.conductors.size() + scene.cylinders.size()) {
+      const Cylinder& cylinder = scene.cylinders[i - scene.conductors.size()];
+      id = cylinder.id;
+      surface_class = cylinder.surface;
+    } else {
+      const MeshObject& mesh = scene.meshes[i - scene.conductors.size() - scene.cylinders.size()];
+      id = mesh.id;
+      surface_class = mesh.surface;
+    }
+    const std::string surface(to_string(surface_class));
     ++by_class[surface].first;
     by_class[surface].second += truth.seen() ? 1 : 0;
-    objects.push_back({{"id", wire ? scene.conductors[i].id : cylinder->id},
+    objects.push_back({{"id", id},
                        {"class", surface},
                        {"returns", truth.returns},
                        {"frames_seen", truth.frames_seen},
@@ -116,10 +135,12 @@ std::string oracle_text(const FlightSummary& summary, const Scene& scene,
 TEST_F(SummaryJsonTest, TextIsNlohmannsForTheSameDocument) {
   const nlohmann::json facts = {{"scenario", "corridor"}, {"seed", 2024}, {"wall_s", 0.1 + 0.2},
                                 {"setup_s", 1e-7},        {"threads", 2},  {"version", "0.1.0"}};
-  for (const auto& [wires, trees] : {std::pair{0, 0}, {3, 0}, {0, 7}, {59, 417}, {6, 3000}}) {
-    SCOPED_TRACE(std::to_string(wires) + " wires, " + std::to_string(trees) + " trees");
-    const Scene scene = scene_of(wires, trees);
-    const std::size_t objects = scene.conductors.size() + scene.cylinders.size();
+  for (const auto& [wires, trees, meshes] :
+       {std::tuple{0, 0, 0}, {3, 0, 0}, {0, 7, 0}, {59, 417, 5}, {6, 3000, 0}, {0, 0, 9}}) {
+    SCOPED_TRACE(std::to_string(wires) + " wires, " + std::to_string(trees) + " trees, " +
+                 std::to_string(meshes) + " meshes");
+    const Scene scene = scene_of(wires, trees, meshes);
+    const std::size_t objects = scene.conductors.size() + scene.cylinders.size() + scene.meshes.size();
     const FlightSummary summary = random_summary(objects, objects + 1, objects == 0 ? 0 : 25);
     const fs::path path = dir_ / "summary.json";
     write_summary_json(path, summary, scene, facts);
@@ -131,7 +152,7 @@ TEST_F(SummaryJsonTest, TextIsNlohmannsForTheSameDocument) {
 }
 
 TEST_F(SummaryJsonTest, ASummaryOfAnotherSceneIsRefused) {
-  const Scene scene = scene_of(2, 2);
+  const Scene scene = scene_of(2, 2, 0);
   const FlightSummary summary(3);
   EXPECT_THROW(write_summary_json(dir_ / "summary.json", summary, scene, nlohmann::json::object()),
                Error);

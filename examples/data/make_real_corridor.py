@@ -1,7 +1,9 @@
 """Writes the data of examples/real_corridor.yaml (run from anywhere; needs only the standard
 library): a DEM of rolling hills as an ESRI ASCII grid in UTM zone 32N (real_corridor_dem.asc with
 its CRS in real_corridor_dem.prj, 40 m cells, heights above the WGS-84 ellipsoid, a NODATA pond),
-and the corridor's two power lines as GeoJSON LineStrings of towers (real_corridor_lines.geojson).
+the corridor's two power lines as GeoJSON LineStrings of towers (real_corridor_lines.geojson), and
+a gabled barn as a Wavefront OBJ model in metres, z up, its origin at the middle of its ground
+floor (real_corridor_barn.obj).
 Positions are laid out in the example's local frame (origin 48.6881° N, 10.8447° E) and turned into
 UTM and WGS-84 with the local-tangent approximation, which is plenty for made-up data.
 
@@ -79,6 +81,23 @@ def write_lines():
         f.write("\n")
 
 
+def write_barn():
+    """A 24 m × 12 m barn, 8 m walls, a ridge along x at 13 m; quads and gable triangles."""
+    hx, hy, wall, ridge = 12.0, 6.0, 8.0, 13.0
+    vertices = [(-hx, -hy, 0), (hx, -hy, 0), (hx, hy, 0), (-hx, hy, 0),
+                (-hx, -hy, wall), (hx, -hy, wall), (hx, hy, wall), (-hx, hy, wall),
+                (-hx, 0, ridge), (hx, 0, ridge)]
+    faces = [(1, 2, 6, 5), (2, 3, 7, 6), (3, 4, 8, 7), (4, 1, 5, 8),   # walls
+             (5, 6, 10, 9), (7, 8, 9, 10),                              # roof
+             (6, 7, 10), (8, 5, 9)]                                     # gables
+    lines = ["# owsim example: a gabled barn, metres, z up (examples/data/make_real_corridor.py)"]
+    lines += [f"v {x:g} {y:g} {z:g}" for x, y, z in vertices]
+    lines += ["f " + " ".join(str(i) for i in face) for face in faces]
+    with open(os.path.join(HERE, "real_corridor_barn.obj"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+
+
 if __name__ == "__main__":
     write_dem()
     write_lines()
+    write_barn()

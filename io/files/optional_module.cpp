@@ -77,6 +77,19 @@ const OptionalModule& OptionalModule::get(std::string_view name, std::string_vie
               "; OWSIM_MODULE_DIR names its folder)");
 }
 
+const OptionalModule& OptionalModule::get(std::string_view name, std::string_view purpose,
+                                          int abi) {
+  const OptionalModule& module = get(name, purpose);
+  const std::string entry = "owsim_" + std::string(name) + "_module_abi";
+  using AbiFunction = int (*)();
+  const int found = reinterpret_cast<AbiFunction>(module.symbol(entry.c_str()))();
+  if (found != abi) {
+    throw Error(std::string(purpose) + " need " + module.path() + " of interface " +
+                std::to_string(abi) + ", found " + std::to_string(found));
+  }
+  return module;
+}
+
 void* OptionalModule::symbol(const char* symbol) const {
   dlerror();
   void* address = dlsym(handle_, symbol);

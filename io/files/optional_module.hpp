@@ -20,6 +20,9 @@ class OptionalModule {
   // lifetime; thread-safe. Throws owsim::Error with one line naming the module, what needs it
   // (`purpose`), where it was looked for and the loader's reason.
   static const OptionalModule& get(std::string_view name, std::string_view purpose);
+  // The same, with the module's interface version checked: its entry point
+  // `int owsim_<name>_module_abi(void)` must return `abi`; otherwise owsim::Error names both.
+  static const OptionalModule& get(std::string_view name, std::string_view purpose, int abi);
 
   // The address of `symbol` in the module; throws owsim::Error if it is missing.
   [[nodiscard]] void* symbol(const char* symbol) const;

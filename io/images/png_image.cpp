@@ -15,13 +15,7 @@ constexpr std::string_view kPngPurpose = "quick-look images";
 // The PNG encoder of the optional module libowsim_png.so (OpenImageIO), loaded on first use.
 owsim_png_encode_fn png_encoder() {
   static const owsim_png_encode_fn encode = [] {
-    const auto& module = OptionalModule::get("png", kPngPurpose);
-    const auto abi =
-        reinterpret_cast<owsim_png_module_abi_fn>(module.symbol("owsim_png_module_abi"));
-    if (abi() != OWSIM_PNG_MODULE_ABI) {
-      throw Error(std::string(kPngPurpose) + " need " + module.path() + " of interface " +
-                  std::to_string(OWSIM_PNG_MODULE_ABI) + ", found " + std::to_string(abi()));
-    }
+    const auto& module = OptionalModule::get("png", kPngPurpose, OWSIM_PNG_MODULE_ABI);
     return reinterpret_cast<owsim_png_encode_fn>(module.symbol("owsim_png_encode"));
   }();
   return encode;

@@ -16,7 +16,8 @@
 namespace owsim {
 namespace {
 
-// The map mask: one bit per layer. Bits 0..3 are the hit classes (1 << SurfaceClass).
+// The map mask: one bit per layer. Bits 0..3 are the hit classes (1 << SurfaceClass); a hit on a
+// mesh counts as a surface hit, like the ground's (map_hit_bit).
 constexpr std::uint8_t kTrajectoryBit = 1 << 4;
 constexpr std::uint8_t kConductorBit = 1 << 5;
 constexpr std::uint8_t kPoleObjectBit = 1 << 6;
@@ -24,6 +25,9 @@ constexpr std::uint8_t kTreeObjectBit = 1 << 7;
 
 constexpr std::uint8_t hit_bit(SurfaceClass surface) {
   return static_cast<std::uint8_t>(1u << static_cast<unsigned>(surface));
+}
+constexpr std::uint8_t map_hit_bit(SurfaceClass surface) {
+  return hit_bit(surface == SurfaceClass::building ? SurfaceClass::ground : surface);
 }
 
 constexpr Rgb8 kGridLow{34, 52, 38};     // lowest terrain on the map
@@ -110,6 +114,7 @@ Rgb8 class_colour(SurfaceClass surface) {
     case SurfaceClass::tree:
       return kQuicklookTree;
     case SurfaceClass::ground:
+    case SurfaceClass::building:
       return kQuicklookGroundHit;
   }
   return kQuicklookGroundHit;
@@ -130,6 +135,9 @@ Eigen::AlignedBox2d quicklook_map_region(const Scene& scene,
   for (const Cylinder& cylinder : scene.cylinders) {
     box.extend(cylinder.base_enu_m.head<2>() - Eigen::Vector2d::Constant(cylinder.radius_m));
     box.extend(cylinder.base_enu_m.head<2>() + Eigen::Vector2d::Constant(cylinder.radius_m));
+  }
+  for (const MeshObject& object : scene.meshes) {
+    for (const Eigen::Vector3d& p : object.mesh.vertices) box.extend(p.head<2>());
   }
   for (const Eigen::Vector3d& p : points_enu_m) {
     if (p.allFinite()) box.extend(p.head<2>());
@@ -286,6 +294,17 @@ void Quicklook::draw_objects(const Scene& scene) {
     }
     if (points.size() == 1) mark(map_px(points.front().x(), points.front().y()), kConductorBit);
   }
+  // Meshes as the outlines of their triangles seen from above, in the poles' colour.
+  for (const MeshObject& object : scene.meshes) {
+    const TriangleMesh& mesh = object.mesh;
+    for (const auto& triangle : mesh.triangles) {
+      for (std::size_t corner = 0; corner < 3; ++corner) {
+        const Eigen::Vector3d& a = mesh.vertices[triangle[corner]];
+        const Eigen::Vector3d& b = mesh.vertices[triangle[(corner + 1) % 3]];
+        mark_line(map_px(a.x(), a.y()), map_px(b.x(), b.y()), kPoleObjectBit);
+      }
+    }
+  }
 }
 
 void Quicklook::require_open(const char* operation) const {
@@ -316,9 +335,9 @@ void Quicklook::add_frame(const FrameView& frame) {
     const PulseReturns& pulse_returns = frame.returns[k];
     for (int i = 0; i < std::min(pulse_returns.count, 2); ++i) {
       const Return& r = pulse_returns.returns[i];
-      if (r.surface > static_cast<std::uint8_t>(SurfaceClass::ground)) continue;
+      if (r.surface >= kSurfaceClassCount) continue;
       const Eigen::Vector3d point = frame.rays[k].origin_enu_m + r.range_m * frame.rays[k].dir_enu;
-      mark(map_px(point.x(), point.y()), hit_bit(static_cast<SurfaceClass>(r.surface)));
+      mark(map_px(point.x(), point.y()), map_hit_bit(static_cast<SurfaceClass>(r.surface)));
     }
   }
   const std::int64_t n = options_.every_nth_frame;

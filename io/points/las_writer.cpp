@@ -24,6 +24,7 @@ namespace {
 constexpr std::size_t kBufferPoints = 34952;  // ≈ 1 MiB of 30-byte records
 constexpr std::uint16_t kLasClassGround = 2;
 constexpr std::uint16_t kLasClassHighVegetation = 5;
+constexpr std::uint16_t kLasClassBuilding = 6;
 constexpr std::uint16_t kLasClassWireConductor = 14;
 constexpr std::uint16_t kLasClassTransmissionTower = 15;
 constexpr int kLasMaxReturns = 15;
@@ -78,6 +79,8 @@ std::uint8_t las_classification(std::optional<SurfaceClass> surface) {
       return kLasClassHighVegetation;
     case SurfaceClass::ground:
       return kLasClassGround;
+    case SurfaceClass::building:
+      return kLasClassBuilding;
   }
   return 0;
 }

@@ -29,6 +29,8 @@ std::uint8_t ply_class(std::optional<SurfaceClass> surface) {
       return 2;
     case SurfaceClass::ground:
       return 3;
+    case SurfaceClass::building:
+      return 4;
   }
   return kPlyClassUnknown;
 }

@@ -90,7 +90,7 @@ FlightOutputs::FlightOutputs(const FlightOutputOptions& options, const Scene& sc
       local_frame_(&local_frame),
       scene_(&scene),
       summary_(options.outputs.contains(OutputKind::summary)
-                   ? scene.conductors.size() + scene.cylinders.size()
+                   ? named_object_count(scene)
                    : 0),
       encoder_(options_.directory, options_.outputs, scene, scan, local_frame),
       checkpoint_path_(run_checkpoint_path(options_.directory)),

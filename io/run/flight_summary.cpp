@@ -48,8 +48,8 @@ void FlightSummary::tally(std::size_t object_count, std::span<const Pulse> pulse
     if (pulse_returns.count >= 2) ++out.second_returns;
     for (int r = 0; r < pulse_returns.count; ++r) {
       const Return& ret = pulse_returns.returns[r];
-      ++out.returns_by_class[std::min<std::size_t>(ret.surface, 3)];
-      if (ret.object_index >= object_count) continue;  // the ground
+      ++out.returns_by_class[std::min<std::size_t>(ret.surface, kSurfaceClassCount - 1)];
+      if (ret.object_index >= object_count) continue;  // the terrain
       out.object_hits.push_back({ret.object_index, pulses[k].time_s, ret.true_range_m});
     }
   }

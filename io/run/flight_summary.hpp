@@ -34,7 +34,7 @@ struct ObjectTruth {
 struct FlightCounts {
   std::uint64_t frames = 0;
   std::uint64_t pulses = 0;
-  std::array<std::uint64_t, 4> returns_by_class{};
+  std::array<std::uint64_t, kSurfaceClassCount> returns_by_class{};
   std::uint64_t second_returns = 0;
   friend bool operator==(const FlightCounts&, const FlightCounts&) = default;
 };
@@ -66,7 +66,7 @@ struct FrameTally {
     double true_range_m = 0.0;
   };
   std::uint64_t pulses = 0;
-  std::array<std::uint64_t, 4> returns_by_class{};
+  std::array<std::uint64_t, kSurfaceClassCount> returns_by_class{};
   std::uint64_t second_returns = 0;
   std::vector<ObjectHit> object_hits;
 

@@ -16,7 +16,7 @@ FrameEncoder::FrameEncoder(const std::filesystem::path& directory,
     : outputs_(outputs),
       scan_(scan),
       local_frame_(&local_frame),
-      object_count_(scene.conductors.size() + scene.cylinders.size()) {
+      object_count_(named_object_count(scene)) {
   if (wants(OutputKind::points)) {
     csv_.emplace((directory / "points.csv").string(), object_ids(scene));
     LasWriterOptions las;

@@ -51,7 +51,7 @@ class FrameEncoder {
   std::set<OutputKind> outputs_;
   ScanParams scan_;
   const LocalFrame* local_frame_;
-  std::size_t object_count_;  // conductors and cylinders: FlightSummary's objects, for its tally
+  std::size_t object_count_;  // named_object_count: FlightSummary's objects, for its tally
   std::optional<PointsCsvRows> csv_;
   std::optional<LasPointEncoder> las_;
 };

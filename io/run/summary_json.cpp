@@ -14,7 +14,8 @@ namespace owsim {
 namespace {
 
 constexpr std::size_t kFlushBytes = std::size_t{1} << 20;
-constexpr std::array kObjectClasses = {SurfaceClass::pole, SurfaceClass::tree, SurfaceClass::wire};
+constexpr std::array kObjectClasses = {SurfaceClass::building, SurfaceClass::pole,
+                                       SurfaceClass::tree, SurfaceClass::wire};
 
 // Text goes into a buffer, the buffer into the file whenever it passes kFlushBytes.
 class StreamedText {
@@ -88,21 +89,17 @@ nlohmann::json head_of(const FlightSummary& summary, const Scene& scene,
   head["frames"] = summary.frames();
   head["pulses"] = summary.pulses();
   head["second_returns"] = summary.second_returns();
-  for (const SurfaceClass surface :
-       {SurfaceClass::wire, SurfaceClass::pole, SurfaceClass::tree, SurfaceClass::ground}) {
+  for (const SurfaceClass surface : kSurfaceClasses) {
     head["returns"][std::string(to_string(surface))] = summary.returns_of(surface);
   }
-  std::array<std::uint64_t, 4> objects{};
-  std::array<std::uint64_t, 4> seen{};
+  std::array<std::uint64_t, kSurfaceClassCount> objects{};
+  std::array<std::uint64_t, kSurfaceClassCount> seen{};
   const auto count = [&](SurfaceClass surface, const ObjectTruth& truth) {
     ++objects[static_cast<std::size_t>(surface)];
     if (truth.seen()) ++seen[static_cast<std::size_t>(surface)];
   };
   const std::span<const ObjectTruth> truths = summary.objects();
-  for (std::size_t i = 0; i < scene.conductors.size(); ++i) count(SurfaceClass::wire, truths[i]);
-  for (std::size_t i = 0; i < scene.cylinders.size(); ++i) {
-    count(scene.cylinders[i].surface, truths[scene.conductors.size() + i]);
-  }
+  for (std::size_t i = 0; i < truths.size(); ++i) count(named_object_class(scene, i), truths[i]);
   for (const SurfaceClass surface : kObjectClasses) {
     const auto c = static_cast<std::size_t>(surface);
     head["objects_by_class"][std::string(to_string(surface))] = {{"objects", objects[c]},
@@ -116,10 +113,9 @@ nlohmann::json head_of(const FlightSummary& summary, const Scene& scene,
 void write_summary_json(const std::filesystem::path& path, const FlightSummary& summary,
                         const Scene& scene, const nlohmann::json& run_facts) {
   const std::span<const ObjectTruth> truths = summary.objects();
-  if (truths.size() != scene.conductors.size() + scene.cylinders.size()) {
+  if (truths.size() != named_object_count(scene)) {
     throw Error(path.string() + ": the summary tallies " + std::to_string(truths.size()) +
-                " objects, the scene has " +
-                std::to_string(scene.conductors.size() + scene.cylinders.size()));
+                " objects, the scene has " + std::to_string(named_object_count(scene)));
   }
   AtomicOutputFile file(path);
   StreamedText out(file);
@@ -135,12 +131,7 @@ void write_summary_json(const std::filesystem::path& path, const FlightSummary& 
     for (std::size_t i = 0; i < truths.size(); ++i) {
       entry.clear();
       if (i > 0) entry += ",\n";
-      if (i < scene.conductors.size()) {
-        append_object(entry, scene.conductors[i].id, SurfaceClass::wire, truths[i]);
-      } else {
-        const Cylinder& cylinder = scene.cylinders[i - scene.conductors.size()];
-        append_object(entry, cylinder.id, cylinder.surface, truths[i]);
-      }
+      append_object(entry, named_object_id(scene, i), named_object_class(scene, i), truths[i]);
       out += entry;
     }
     out += "\n  ]\n}\n";

@@ -61,6 +61,7 @@ struct SceneSpec {
   std::vector<Cylinder> poles;       // SurfaceClass::pole
   std::vector<Cylinder> trees;       // SurfaceClass::tree
   std::optional<ForestSpec> forest;  // generated with the scenario's seed
+  std::vector<MeshObject> meshes;    // placed: vertices in local ENU metres
 };
 
 struct Scenario {

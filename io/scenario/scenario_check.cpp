@@ -218,6 +218,33 @@ void check_cylinders(const std::vector<Cylinder>& cylinders, std::string_view li
   }
 }
 
+void check_meshes(const std::vector<MeshObject>& meshes, IdCheck& ids) {
+  for (std::size_t i = 0; i < meshes.size(); ++i) {
+    const MeshObject& object = meshes[i];
+    const std::string key = indexed("scene.meshes", i);
+    ids.add(object.id, key);
+    if (object.surface != SurfaceClass::building && object.surface != SurfaceClass::pole &&
+        object.surface != SurfaceClass::tree) {
+      throw input_error(key + ".class", "must be building, pole or tree, got " +
+                                            std::string(to_string(object.surface)));
+    }
+    require_fraction(object.reflectivity, key + ".reflectivity");
+    const TriangleMesh& mesh = object.mesh;
+    if (mesh.triangles.empty()) throw input_error(key, "the mesh has no triangles");
+    for (const auto& vertex : mesh.vertices) {
+      if (!vertex.allFinite()) throw input_error(key, "a vertex is not finite");
+    }
+    for (const auto& triangle : mesh.triangles) {
+      for (const std::uint32_t corner : triangle) {
+        if (corner >= mesh.vertices.size()) {
+          throw input_error(key, "a triangle names vertex " + std::to_string(corner) + " of " +
+                                     std::to_string(mesh.vertices.size()));
+        }
+      }
+    }
+  }
+}
+
 void check_scene(const Scenario& scenario) {
   const SceneSpec& scene = scenario.scene;
   require_fraction(scene.terrain.reflectivity, "scene.terrain.reflectivity");
@@ -233,6 +260,7 @@ void check_scene(const Scenario& scenario) {
   }
   check_cylinders(scene.poles, "scene.poles", ids);
   check_cylinders(scene.trees, "scene.trees", ids);
+  check_meshes(scene.meshes, ids);
   if (scene.forest)
     (void)generate_forest(*scene.forest, scenario.seed, scene.terrain, "scene.forest");
 }

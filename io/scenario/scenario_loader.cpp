@@ -9,11 +9,13 @@
 
 #include "geometry/conductor_layout.hpp"
 #include "geometry/error.hpp"
+#include "geometry/mesh_placement.hpp"
 #include "geometry/number_text.hpp"
 #include "geometry/utm.hpp"
 #include "io/scenario/dem_terrain.hpp"
 #include "io/scenario/esri_ascii_grid.hpp"
 #include "io/scenario/gis_lines.hpp"
+#include "io/scenario/mesh_file.hpp"
 #include "io/scenario/value_ranges.hpp"
 #include "io/scenario/yaml_reader.hpp"
 #include "sensor/range_counter.hpp"
@@ -455,7 +457,38 @@ class ScenarioReader {
       }
     }
     if (const auto forest = map.get("forest")) read_forest(*forest);
+    if (const auto meshes = map.get("meshes")) {
+      for (const YamlValue& item : meshes->items()) read_mesh(item);
+    }
     map.finish();
+  }
+
+  // meshes: a model file placed at a position (on the terrain when it has no height), turned by
+  // yaw_deg (clockwise from north), scaled, of class building (default), pole or tree.
+  void read_mesh(const YamlValue& value) {
+    YamlMap map(value);
+    MeshObject mesh;
+    mesh.id = read_id(map);
+    const YamlValue file_value = map.require("file");
+    if (file_value.text().empty()) file_value.fail("expected a file name, got ''");
+    MeshPlacement placement;
+    placement.at_enu_m = read_position(map.require("at"), Height::optional);
+    if (const auto yaw = map.optional_number("yaw_deg")) placement.yaw_deg = *yaw;
+    if (const auto scale = map.get("scale")) placement.scale = positive(*scale);
+    if (const auto up = map.get("up_axis")) {
+      placement.up = up->one_of({"z", "y"}) == "y" ? ModelUpAxis::y : ModelUpAxis::z;
+    }
+    if (const auto surface = map.get("class")) {
+      mesh.surface = *surface_class_from_string(surface->one_of({"building", "pole", "tree"}));
+    }
+    if (const auto given = map.get("reflectivity")) mesh.reflectivity = fraction(*given);
+    map.finish();
+    try {
+      mesh.mesh = placed_mesh(read_mesh_file(resolve(file_value.text())), placement);
+    } catch (const Error& error) {
+      file_value.fail(error.what());
+    }
+    scenario_.scene.meshes.push_back(std::move(mesh));
   }
 
   void read_terrain(const std::optional<YamlValue>& value) {

@@ -41,6 +41,7 @@ Scene build_scene(const Scenario& scenario) {
       std::vector<Cylinder> forest = generate_forest(*spec.forest, scenario.seed, spec.terrain);
       for (Cylinder& tree : forest) scene.cylinders.push_back(std::move(tree));
     }
+    scene.meshes = spec.meshes;
   } catch (const Error& error) {
     rethrow_in_file(scenario, error);
   }

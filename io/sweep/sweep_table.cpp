@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/scene.hpp"
 #include "geometry/error.hpp"
 #include "io/files/atomic_output_file.hpp"
 #include "io/files/csv_cells.hpp"
@@ -16,12 +17,10 @@
 namespace owsim {
 namespace {
 
-constexpr std::array<const char*, 4> kClasses = {"wire", "pole", "tree", "ground"};
-
 struct MemberRow {
   std::uint64_t frames = 0;
   std::uint64_t pulses = 0;
-  std::array<std::uint64_t, 4> returns{};
+  std::array<std::uint64_t, kSurfaceClassCount> returns{};
   std::uint64_t second_returns = 0;
   std::vector<std::pair<std::size_t, double>> first_seen;  // (wire column, range)
 };
@@ -35,8 +34,9 @@ MemberRow read_member(const std::filesystem::path& path,
         nlohmann::json::parse(read_input_file(path, "member summary", std::uintmax_t{1} << 30));
     row.frames = summary.at("frames").get<std::uint64_t>();
     row.pulses = summary.at("pulses").get<std::uint64_t>();
-    for (std::size_t c = 0; c < kClasses.size(); ++c) {
-      row.returns[c] = summary.at("returns").at(kClasses[c]).get<std::uint64_t>();
+    for (std::size_t c = 0; c < kSurfaceClassCount; ++c) {
+      const std::string name(to_string(kSurfaceClasses[c]));
+      row.returns[c] = summary.at("returns").at(name).get<std::uint64_t>();
     }
     row.second_returns = summary.at("second_returns").get<std::uint64_t>();
     for (const nlohmann::json& object : summary.at("objects")) {
@@ -75,7 +75,10 @@ void write_sweep_table(const SweepSpec& spec, const std::filesystem::path& out) 
     text += csv_cell(variation.key);
   }
   text += ",frames,pulses";
-  for (const char* name : kClasses) text += std::string(",returns_") + name;
+  for (const SurfaceClass surface : kSurfaceClasses) {
+    text += ",returns_";
+    text += to_string(surface);
+  }
   text += ",second_returns";
   for (const std::string& id : wire_ids) {
     text += ',';

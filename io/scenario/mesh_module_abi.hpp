@@ -1,0 +1,23 @@
+#pragma once
+// The C entry points of libowsim_mesh.so (io/scenario/mesh/mesh_module.cpp), the optional module
+// that reads triangle meshes with assimp. The loader (io/scenario/mesh_file.cpp) refuses a module
+// whose owsim_mesh_module_abi() differs from OWSIM_MESH_MODULE_ABI.
+#include <cstddef>
+
+#define OWSIM_MESH_MODULE_ABI 1
+
+extern "C" {
+
+// Receives the mesh read (called once, before owsim_mesh_read returns 0): vertex_count vertices
+// of 3 doubles (the file's own coordinates, every node's transformation applied) and
+// triangle_count triangles of 3 vertex indices, in the file's winding.
+typedef void (*owsim_mesh_sink)(void* context, std::size_t vertex_count, const double* xyz,
+                                std::size_t triangle_count, const unsigned* corners);
+
+typedef int (*owsim_mesh_module_abi_fn)(void);
+// Reads every mesh of the model file at `path` (OBJ, PLY, or any format assimp reads), polygons
+// split into triangles, points and lines left out. Returns 0 and calls `sink` once, or returns
+// non-zero with a one-line message in `error`.
+typedef int (*owsim_mesh_read_fn)(const char* path, owsim_mesh_sink sink, void* sink_context,
+                                  char* error, std::size_t error_size);
+}

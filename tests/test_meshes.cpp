@@ -1,0 +1,237 @@
+// Protects triangle meshes (scenario key scene.meshes): the placement of a model in the local
+// frame (geometry/mesh_placement.hpp) against pinned turns, the model files read through
+// libowsim_mesh.so (OBJ polygons and PLY faces split into triangles), returns on an OBJ building
+// and a y-up PLY tower placed by latitude and longitude lying on the meshes as an independent
+// reader and pyproj place them (tests/oracles/mesh_oracle.py), the meshes as objects of the
+// summary, and bad meshes giving one line and no output.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <random>
+#include <string>
+
+#include "cli_runner.hpp"
+#include "geometry/error.hpp"
+#include "geometry/mesh_placement.hpp"
+#include "io/scenario/mesh_file.hpp"
+#include "python_oracle.hpp"
+
+namespace owsim {
+namespace {
+
+namespace fs = std::filesystem;
+using test::CliResult;
+using test::run_cli;
+using test::TempDir;
+
+void expect_near(const Eigen::Vector3d& actual, const Eigen::Vector3d& expected) {
+  EXPECT_LT((actual - expected).norm(), 1e-12) << actual.transpose() << " vs "
+                                               << expected.transpose();
+}
+
+TEST(MeshPlacement, YawTurnsClockwiseFromNorthLikeAHeading) {
+  MeshPlacement placement;
+  placement.yaw_deg = 90.0;
+  expect_near(placed_vertex({0.0, 1.0, 0.0}, placement), {1.0, 0.0, 0.0});   // north → east
+  expect_near(placed_vertex({1.0, 0.0, 0.0}, placement), {0.0, -1.0, 0.0});  // east → south
+  expect_near(placed_vertex({0.0, 0.0, 1.0}, placement), {0.0, 0.0, 1.0});
+  placement.yaw_deg = 30.0;
+  expect_near(placed_vertex({0.0, 2.0, 0.0}, placement), {1.0, std::sqrt(3.0), 0.0});
+}
+
+TEST(MeshPlacement, YUpModelsStandUpAndScaleAndPositionFollow) {
+  MeshPlacement placement;
+  placement.up = ModelUpAxis::y;
+  // Blender's OBJ export: up +y, forward −z, so the model's −z is north.
+  expect_near(placed_vertex({0.0, 1.0, 0.0}, placement), {0.0, 0.0, 1.0});
+  expect_near(placed_vertex({0.0, 0.0, -1.0}, placement), {0.0, 1.0, 0.0});
+  expect_near(placed_vertex({1.0, 0.0, 0.0}, placement), {1.0, 0.0, 0.0});
+  placement = MeshPlacement{};
+  placement.at_enu_m = {10.0, 20.0, 30.0};
+  placement.scale = 2.0;
+  expect_near(placed_vertex({1.0, 1.0, 1.0}, placement), {12.0, 22.0, 32.0});
+}
+
+// Any placement is a rotation, a scaling and a shift: distances scale, turning sense is kept (a
+// triangle's normal turns with the model, never flips), whatever the axis convention.
+TEST(MeshPlacement, RandomPlacementsKeepShapeAndWinding) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> coordinate(-50.0, 50.0);
+  for (int i = 0; i < 500; ++i) {
+    MeshPlacement placement;
+    placement.yaw_deg = coordinate(rng) * 7.0;
+    placement.scale = 0.1 + std::abs(coordinate(rng)) / 10.0;
+    placement.up = i % 2 == 0 ? ModelUpAxis::z : ModelUpAxis::y;
+    placement.at_enu_m = {coordinate(rng), coordinate(rng), coordinate(rng)};
+    const Eigen::Vector3d a(coordinate(rng), coordinate(rng), coordinate(rng));
+    const Eigen::Vector3d b(coordinate(rng), coordinate(rng), coordinate(rng));
+    const Eigen::Vector3d c(coordinate(rng), coordinate(rng), coordinate(rng));
+    const Eigen::Vector3d pa = placed_vertex(a, placement);
+    const Eigen::Vector3d pb = placed_vertex(b, placement);
+    const Eigen::Vector3d pc = placed_vertex(c, placement);
+    EXPECT_NEAR((pb - pa).norm(), placement.scale * (b - a).norm(), 1e-9);
+    const double volume = (b - a).cross(c - a).dot(a - Eigen::Vector3d(1, 2, 3));
+    const Eigen::Vector3d p0 = placed_vertex({1, 2, 3}, placement);
+    const double placed_volume = (pb - pa).cross(pc - pa).dot(pa - p0);
+    EXPECT_NEAR(placed_volume, std::pow(placement.scale, 3) * volume,
+                1e-9 * std::max(1.0, std::abs(placed_volume)));
+  }
+}
+
+// A 24 × 12 m barn with 8 m walls and a 13 m ridge: six quads and two triangles.
+const char* kBarnObj = R"(# barn
+v -12 -6 0
+v 12 -6 0
+v 12 6 0
+v -12 6 0
+v -12 -6 8
+v 12 -6 8
+v 12 6 8
+v -12 6 8
+v -12 0 13
+v 12 0 13
+f 1 2 6 5
+f 2 3 7 6
+f 3 4 8 7
+f 4 1 5 8
+f 5 6 10 9
+f 7 8 9 10
+f 6 7 10
+f 8 5 9
+)";
+
+// A y-up pyramid (a stand-in lattice tower): a 4 × 4 base quad and four sides up to 10.
+const char* kTowerPly = R"(ply
+format ascii 1.0
+element vertex 5
+property float x
+property float y
+property float z
+element face 5
+property list uchar int vertex_indices
+end_header
+-2 0 -2
+2 0 -2
+2 0 2
+-2 0 2
+0 10 0
+4 0 1 2 3
+3 0 4 1
+3 1 4 2
+3 2 4 3
+3 3 4 0
+)";
+
+class Meshes : public ::testing::Test {
+ protected:
+  void write(const std::string& file, const std::string& text) { std::ofstream(dir_ / file) << text; }
+  CliResult run(const std::string& name, const std::string& meshes) {
+    std::ofstream(dir_ / (name + ".yaml"))
+        << "name: " << name << R"(
+seed: 3
+origin: {lat: 48.6881, lon: 10.8447, h: 450.0}
+sensor: {model: milows, mount: {roll_deg: 0, pitch_deg: -4, yaw_deg: 0, lever_arm_m: [0, 0, 0]}}
+trajectory:
+  waypoints:
+    speed_mps: 40
+    points: [{e: -600, n: 0, u: 70}, {e: 300, n: 0, u: 70}]
+scene:
+  terrain: {flat_u: 2}
+  meshes:
+)" << meshes;
+    return run_cli({"run", (dir_ / (name + ".yaml")).string(), "--no-noise", "--frames", "40",
+                    "--outputs", "points,summary", "--out", (dir_ / name).string()},
+                   dir_.path());
+  }
+  TempDir dir_{"owsim_meshes"};
+};
+
+TEST_F(Meshes, FilesAreReadAsTriangles) {
+  write("barn.obj", kBarnObj);
+  write("tower.ply", kTowerPly);
+  const TriangleMesh barn = read_mesh_file(dir_ / "barn.obj");
+  EXPECT_EQ(barn.triangles.size(), 14u);
+  double top = 0.0;
+  for (const auto& vertex : barn.vertices) top = std::max(top, vertex.z());
+  EXPECT_EQ(top, 13.0);
+  const TriangleMesh tower = read_mesh_file(dir_ / "tower.ply");
+  EXPECT_EQ(tower.triangles.size(), 6u);
+  EXPECT_EQ(tower.vertices.size(), 5u);
+}
+
+TEST_F(Meshes, ReturnsLieOnTheMeshesAndEachMeshIsAnObject) {
+  write("barn.obj", kBarnObj);
+  write("tower.ply", kTowerPly);
+  // The tower by latitude and longitude: about 280 m east, 40 m south of the origin.
+  const CliResult result = run("two", R"(    - {id: barn, file: barn.obj, at: {e: 150, n: 35, u: 2}, yaw_deg: 30, reflectivity: 0.3}
+    - {id: tower, file: tower.ply, at: {lat: 48.68774, lon: 10.84850, h: 452.5}, yaw_deg: -20,
+       scale: 2, up_axis: y, class: pole, reflectivity: 0.2}
+)");
+  ASSERT_EQ(result.exit_status, 0) << result.err;
+  const nlohmann::json spec = {
+      {"origin", {48.6881, 10.8447, 450.0}},
+      {"meshes",
+       {{{"id", "barn"}, {"file", "barn.obj"}, {"at", {{"e", 150}, {"n", 35}, {"u", 2}}},
+         {"yaw_deg", 30}},
+        {{"id", "tower"}, {"file", "tower.ply"},
+         {"at", {{"lat", 48.68774}, {"lon", 10.84850}, {"h", 452.5}}}, {"yaw_deg", -20},
+         {"scale", 2}, {"up_axis", "y"}}}}};
+  std::ofstream(dir_ / "spec.json") << spec.dump();
+  const std::string verdict = test::run_python_file(
+      fs::path(OWSIM_SOURCE_DIR) / "tests/oracles/mesh_oracle.py",
+      {(dir_ / "spec.json").string() + " " + (dir_ / "two/points.csv").string(), false});
+  ASSERT_EQ(verdict.rfind("ok ", 0), 0u) << verdict;
+  int barn = 0, tower = 0;
+  ASSERT_EQ(std::sscanf(verdict.c_str(), "ok barn=%d tower=%d", &barn, &tower), 2) << verdict;
+  EXPECT_GT(barn, 1000) << verdict;
+  EXPECT_GT(tower, 100) << verdict;
+
+  std::ifstream file(dir_ / "two/summary.json");
+  const nlohmann::json summary = nlohmann::json::parse(file);
+  EXPECT_EQ(summary["returns"]["building"], barn);
+  EXPECT_EQ(summary["objects_by_class"]["building"]["objects"], 1);
+  const auto& objects = summary["objects"];
+  const auto entry = [&](const std::string& id) {
+    return *std::find_if(objects.begin(), objects.end(),
+                         [&](const nlohmann::json& o) { return o["id"] == id; });
+  };
+  EXPECT_EQ(entry("barn")["class"], "building");
+  EXPECT_EQ(entry("barn")["returns"], barn);
+  EXPECT_EQ(entry("tower")["class"], "pole");
+  EXPECT_EQ(entry("tower")["returns"], tower);
+}
+
+TEST_F(Meshes, BadMeshesGiveOneLineAndNoOutput) {
+  write("barn.obj", kBarnObj);
+  write("points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+  write("lines.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2 3\n");
+  write("garbage.ply", "ply\nformat ascii 1.0\nelement vertex two\nend_header\n");
+  const struct {
+    std::string entry;
+    std::string says;
+  } cases[] = {
+      {"{id: m, file: missing.obj, at: {e: 0, n: 0}}", "missing.obj: cannot read the mesh"},
+      {"{id: m, file: points.obj, at: {e: 0, n: 0}}", "points.obj: "},
+      {"{id: m, file: lines.obj, at: {e: 0, n: 0}}", "lines.obj: the mesh has no triangles"},
+      {"{id: m, file: garbage.ply, at: {e: 0, n: 0}}", "garbage.ply: cannot read the mesh"},
+      {"{id: m, file: barn.obj, at: {e: 0, n: 0}, class: wire}", "class"},
+      {"{id: m, file: barn.obj, at: {e: 0, n: 0}, scale: 0}", "scale"},
+      {"{id: m, file: barn.obj, at: {e: 0, n: 0}, up_axis: x}", "up_axis"},
+  };
+  for (const auto& bad : cases) {
+    SCOPED_TRACE(bad.entry);
+    const CliResult result = run("bad", "    - " + bad.entry + "\n");
+    EXPECT_NE(result.exit_status, 0);
+    EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
+    EXPECT_NE(result.err.find("scene.meshes[0]"), std::string::npos) << result.err;
+    EXPECT_NE(result.err.find(bad.says), std::string::npos) << result.err;
+    EXPECT_FALSE(fs::exists(dir_ / "bad"));
+  }
+}
+
+}  // namespace
+}  // namespace owsim
