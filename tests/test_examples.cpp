@@ -286,14 +286,14 @@ TEST(Examples, HellsimFlightTurnsThroughNorthNearTheOrigin) {
 }
 
 // The real corridor's data is what examples/data/make_real_corridor.py writes, and the example
-// holds its two GIS lines' spans and towers on the DEM.
-TEST(Examples, RealCorridorIsItsScriptsDataAsTwoGisLinesOnADem) {
+// holds its two GIS lines' spans and towers on the DEM and the barn standing on it.
+TEST(Examples, RealCorridorIsItsScriptsDataAsTwoGisLinesAndABarnOnADem) {
   const TempDir dir("owsim_real_corridor_script");
   fs::copy_file(kExamples / "data" / "make_real_corridor.py", dir / "make_real_corridor.py");
   const std::string command = std::string(OWSIM_PYTHON) + " " + (dir / "make_real_corridor.py").string();
   ASSERT_EQ(std::system(command.c_str()), 0) << command;
   for (const char* file : {"real_corridor_dem.asc", "real_corridor_dem.prj",
-                           "real_corridor_lines.geojson"}) {
+                           "real_corridor_lines.geojson", "real_corridor_barn.obj"}) {
     EXPECT_EQ(test::read_whole_file(dir / file),
               test::read_whole_file(kExamples / "data" / file))
         << file;
@@ -306,6 +306,24 @@ TEST(Examples, RealCorridorIsItsScriptsDataAsTwoGisLinesOnADem) {
   EXPECT_EQ(scenario.scene.poles.size(), 6u + 9u);
   const Scene scene = build_scene(scenario);
   EXPECT_EQ(scene.conductors.size(), 5u * 7u + 8u * 3u);
+  ASSERT_EQ(scene.meshes.size(), 1u);
+  const MeshObject& barn = scene.meshes.front();
+  EXPECT_EQ(barn.id, "barn");
+  EXPECT_EQ(barn.surface, SurfaceClass::building);
+  EXPECT_EQ(barn.mesh.triangles.size(), 14u);
+  // Its floor's middle (the model's origin) on the DEM, its ridge 13 m above.
+  double floor = 1e9;
+  double ridge = -1e9;
+  for (const auto& vertex : barn.mesh.vertices) {
+    floor = std::min(floor, vertex.z());
+    ridge = std::max(ridge, vertex.z());
+  }
+  Eigen::Vector3d middle = Eigen::Vector3d::Zero();
+  for (const auto& vertex : barn.mesh.vertices) {
+    if (vertex.z() == floor) middle += vertex / 4.0;  // the four floor corners
+  }
+  EXPECT_NEAR(middle.z(), scenario.scene.terrain.height_at(middle.x(), middle.y()), 1e-6);
+  EXPECT_NEAR(ridge - floor, 13.0, 1e-9);
 }
 
 // The bundled file is what examples/data/make_hellsim_turn.py writes (every number to within
