@@ -2,7 +2,9 @@
 
 1. per pulse: `owsim bench` on the corridor (examples/corridor.yaml) over its flat ground and over
    DEMs of rolling hills (10 m and 30 m cells, UTM 32N GeoTIFFs), the same objects and flight;
-   trace-only and end-to-end pulses/s of each and their ratio to flat;
+   trace-only and end-to-end pulses/s of each and their ratio to flat; and the example
+   examples/real_corridor.yaml (the corridor from GIS data over a 40 m DEM) against the flat
+   corridor;
 2. memory against the file: the same flight (`owsim run --frames 30 --outputs d64,summary`) over
    DEMs of growing extent, from the flight's reach to a country-sized raster; peak RSS (the child's
    own ru_maxrss), set-up time (summary.json's setup_s) and the file's size. Only the posts within
@@ -134,6 +136,9 @@ def main():
             e2e, trace = bench(args.owsim, scenario_over(folder, dem))
             print(f"| DEM {cell:g} m cells | {e2e / 1e6:.2f} M | {trace / 1e6:.2f} M | "
                   f"{e2e / flat_e2e:.2f} | {trace / flat_trace:.2f} |")
+        e2e, trace = bench(args.owsim, os.path.join(ROOT, "examples", "real_corridor.yaml"))
+        print(f"| real_corridor example (40 m DEM) | {e2e / 1e6:.2f} M | {trace / 1e6:.2f} M | "
+              f"{e2e / flat_e2e:.2f} | {trace / flat_trace:.2f} |")
         print()
         print("| DEM extent (10 m cells) | file MB | cells | set-up s | peak MB | run wall s |")
         print("|---|---|---|---|---|---|")
