@@ -49,6 +49,7 @@ static_assert(sizeof(owsim_pose) == sizeof(owsim::PoseSample));
 static_assert(offsetof(owsim_pose, heading_deg) == offsetof(owsim::PoseSample, heading_deg));
 static_assert(OWSIM_CLASS_GROUND == static_cast<int>(owsim::SurfaceClass::ground));
 static_assert(OWSIM_CLASS_BUILDING == static_cast<int>(owsim::SurfaceClass::building));
+static_assert(OWSIM_CLASS_FOG == static_cast<int>(owsim::SurfaceClass::fog));
 static_assert(OWSIM_CLASS_UNKNOWN == owsim::kUnknownSurface);
 
 thread_local std::string last_error;

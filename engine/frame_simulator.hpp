@@ -19,6 +19,7 @@
 #include "sensor/receiver.hpp"
 #include "sensor/scan_params.hpp"
 #include "sensor/scan_pattern.hpp"
+#include "sensor/weather.hpp"
 
 namespace owsim {
 
@@ -79,6 +80,7 @@ class FrameSimulator {
   FrameSimulatorParams params_;
   FrameRayBuilder ray_builder_;
   FrameTracer tracer_;
+  WeatherMedia weather_;  // the scene's fog volumes (SENSOR-SPEC §10); empty in clear air
   // Each worker's candidates for the block of lines it is tracing (simulate).
   mutable tbb::enumerable_thread_specific<std::vector<PulseCandidates>> block_candidates_;
 };

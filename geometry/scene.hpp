@@ -12,6 +12,7 @@
 #include <string_view>
 #include <vector>
 
+#include "geometry/fog_volume.hpp"
 #include "geometry/terrain.hpp"
 #include "geometry/triangle_mesh.hpp"
 
@@ -19,14 +20,15 @@ namespace owsim {
 
 // What a return hit, as the detector classes it (SENSOR-SPEC §6, ch. 1). The codes are points.csv's
 // class codes and the C API's OWSIM_CLASS_*: new classes are added at the end.
-enum class SurfaceClass : std::uint8_t { wire, pole, tree, ground, building };
+// fog: the echo of a fog or cloud volume (SENSOR-SPEC §10).
+enum class SurfaceClass : std::uint8_t { wire, pole, tree, ground, building, fog };
 
-inline constexpr std::size_t kSurfaceClassCount = 5;
+inline constexpr std::size_t kSurfaceClassCount = 6;
 inline constexpr std::array<SurfaceClass, kSurfaceClassCount> kSurfaceClasses = {
-    SurfaceClass::wire, SurfaceClass::pole, SurfaceClass::tree, SurfaceClass::ground,
-    SurfaceClass::building};
+    SurfaceClass::wire,   SurfaceClass::pole,     SurfaceClass::tree,
+    SurfaceClass::ground, SurfaceClass::building, SurfaceClass::fog};
 
-// "wire", "pole", "tree", "ground", "building" (the `class` column of INTERFACE.md)
+// "wire", "pole", "tree", "ground", "building", "fog" (the `class` column of INTERFACE.md)
 [[nodiscard]] constexpr std::string_view to_string(SurfaceClass surface) {
   switch (surface) {
     case SurfaceClass::wire:
@@ -39,6 +41,8 @@ inline constexpr std::array<SurfaceClass, kSurfaceClassCount> kSurfaceClasses = 
       return "ground";
     case SurfaceClass::building:
       return "building";
+    case SurfaceClass::fog:
+      return "fog";
   }
   return "ground";
 }
@@ -83,6 +87,8 @@ struct Scene {
   std::vector<Cylinder> cylinders;
   std::vector<MeshObject> meshes;
   Terrain terrain;
+  std::vector<FogVolume> fog;  // SENSOR-SPEC §10 media: not traced, met along each ray exactly
+  double fog_backscatter_ratio_sr = 0.0154;  // κ of SENSOR-SPEC §10 (key weather.backscatter_ratio_sr)
 };
 
 // How many objects the scene names before the terrain: conductors, cylinders and meshes.
@@ -91,15 +97,22 @@ struct Scene {
 }
 
 // The id of every object a return can belong to, by object index: conductors, then cylinders,
-// then meshes, then "terrain" (the order of sensor/pulse_candidates.hpp's object indices).
+// then meshes, then "terrain" (the order of sensor/pulse_candidates.hpp's object indices), then
+// the fog volumes (fog_object_index).
 [[nodiscard]] inline std::vector<std::string> object_ids(const Scene& scene) {
   std::vector<std::string> ids;
-  ids.reserve(named_object_count(scene) + 1);
+  ids.reserve(named_object_count(scene) + 1 + scene.fog.size());
   for (const Conductor& conductor : scene.conductors) ids.push_back(conductor.id);
   for (const Cylinder& cylinder : scene.cylinders) ids.push_back(cylinder.id);
   for (const MeshObject& mesh : scene.meshes) ids.push_back(mesh.id);
   ids.emplace_back("terrain");
+  for (const FogVolume& volume : scene.fog) ids.push_back(volume.id);
   return ids;
+}
+
+// The object index of the first fog volume; the others follow.
+[[nodiscard]] inline std::uint32_t fog_object_index(const Scene& scene) {
+  return static_cast<std::uint32_t>(named_object_count(scene) + 1);
 }
 
 // The class and the id of named object `object` (object < named_object_count(scene)).

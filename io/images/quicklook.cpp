@@ -115,6 +115,7 @@ Rgb8 class_colour(SurfaceClass surface) {
       return kQuicklookTree;
     case SurfaceClass::ground:
     case SurfaceClass::building:
+    case SurfaceClass::fog:
       return kQuicklookGroundHit;
   }
   return kQuicklookGroundHit;
@@ -335,7 +336,8 @@ void Quicklook::add_frame(const FrameView& frame) {
     const PulseReturns& pulse_returns = frame.returns[k];
     for (int i = 0; i < std::min(pulse_returns.count, 2); ++i) {
       const Return& r = pulse_returns.returns[i];
-      if (r.surface >= kSurfaceClassCount) continue;
+      // Fog echoes are not places on the map.
+      if (r.surface >= static_cast<std::uint8_t>(SurfaceClass::fog)) continue;
       const Eigen::Vector3d point = frame.rays[k].origin_enu_m + r.range_m * frame.rays[k].dir_enu;
       mark(map_px(point.x(), point.y()), map_hit_bit(static_cast<SurfaceClass>(r.surface)));
     }

@@ -27,6 +27,7 @@ constexpr std::uint16_t kLasClassHighVegetation = 5;
 constexpr std::uint16_t kLasClassBuilding = 6;
 constexpr std::uint16_t kLasClassWireConductor = 14;
 constexpr std::uint16_t kLasClassTransmissionTower = 15;
+constexpr std::uint16_t kLasClassHighNoise = 18;
 constexpr int kLasMaxReturns = 15;
 constexpr double kOffsetRoundingEnM = 1000.0;  // easting/northing offsets: whole kilometres
 constexpr double kOffsetRoundingUpM = 1.0;     // height offset: whole metres
@@ -81,6 +82,8 @@ std::uint8_t las_classification(std::optional<SurfaceClass> surface) {
       return kLasClassGround;
     case SurfaceClass::building:
       return kLasClassBuilding;
+    case SurfaceClass::fog:
+      return kLasClassHighNoise;
   }
   return 0;
 }

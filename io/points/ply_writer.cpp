@@ -31,6 +31,8 @@ std::uint8_t ply_class(std::optional<SurfaceClass> surface) {
       return 3;
     case SurfaceClass::building:
       return 4;
+    case SurfaceClass::fog:
+      return 5;
   }
   return kPlyClassUnknown;
 }

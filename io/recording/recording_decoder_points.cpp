@@ -14,6 +14,7 @@
 #include "io/points/points_csv_writer.hpp"
 #include "sensor/frame_view.hpp"
 #include "sensor/range_counter.hpp"
+#include "sensor/weather.hpp"
 
 namespace owsim {
 namespace {
@@ -81,8 +82,12 @@ DecodeReport decode_recording_points(RecordingDecoder& decoder, const RecordingS
   const RangeCounterParams& counter = scenario.receiver.counter;
   const Scene& objects = scene.scene();
   const bool label =
-      options.label_from_scene && (!objects.conductors.empty() || !objects.cylinders.empty() ||
-                                   !scene.embree_scene().terrain_mesh().triangles.empty());
+      options.label_from_scene &&
+      (!objects.conductors.empty() || !objects.cylinders.empty() || !objects.meshes.empty() ||
+       !objects.fog.empty() || !scene.embree_scene().terrain_mesh().triangles.empty());
+  // Fog returns are labelled with the volume echo SENSOR-SPEC §10 puts on the pulse's path.
+  const WeatherMedia weather(objects.fog, objects.fog_backscatter_ratio_sr,
+                             fog_object_index(objects), scenario.receiver);
   const double tolerance = label_tolerance_m(scenario.receiver);
   const FrameTracer tracer(scene.embree_scene(), TraceApi::stream);
 
@@ -95,6 +100,7 @@ DecodeReport decode_recording_points(RecordingDecoder& decoder, const RecordingS
   std::vector<Label> labels;  // two per pulse
   std::vector<PointRecord> points;
   std::array<Candidate, PulseCandidates::kMaxWires + 1> gathered;
+  std::array<Candidate, PulseCandidates::kMaxWires + 1 + kMaxVolumeRuns> weathered;
   while (decoder.next(frame)) {
     ++report.frames;
     ++report.frames_by_beta_source[static_cast<std::size_t>(frame.beta_source)];
@@ -112,7 +118,15 @@ DecodeReport decode_recording_points(RecordingDecoder& decoder, const RecordingS
       candidates.resize(frame.size());
       tracer.trace(rays, active, candidates);
       for (std::size_t j = 0; j < frame.size(); ++j) {
-        const std::span<const Candidate> met = candidates[j].gather(gathered);
+        std::span<const Candidate> met = candidates[j].gather(gathered);
+        if (!weather.empty()) {
+          std::copy(met.begin(), met.end(), weathered.begin());
+          const double end_m = candidates[j].has_solid() ? candidates[j].solid().range_m
+                                                         : timeout_range_m(counter);
+          met = std::span<const Candidate>(
+              weathered.data(),
+              apply_weather(weather, rays[j], end_m, scenario.receiver, weathered, met.size()));
+        }
         for (int r = 0; r < returns[j].count; ++r) {
           if (const auto match = nearest_candidate(met, returns[j].returns[r].range_m, tolerance)) {
             labels[2 * j + static_cast<std::size_t>(r)] = Label{true, *match};

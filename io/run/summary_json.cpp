@@ -90,6 +90,8 @@ nlohmann::json head_of(const FlightSummary& summary, const Scene& scene,
   head["pulses"] = summary.pulses();
   head["second_returns"] = summary.second_returns();
   for (const SurfaceClass surface : kSurfaceClasses) {
+    // Fog returns are counted where the scenario has weather (SENSOR-SPEC §10) only.
+    if (surface == SurfaceClass::fog && scene.fog.empty()) continue;
     head["returns"][std::string(to_string(surface))] = summary.returns_of(surface);
   }
   std::array<std::uint64_t, kSurfaceClassCount> objects{};

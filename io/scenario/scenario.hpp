@@ -62,6 +62,8 @@ struct SceneSpec {
   std::vector<Cylinder> trees;       // SurfaceClass::tree
   std::optional<ForestSpec> forest;  // generated with the scenario's seed
   std::vector<MeshObject> meshes;    // placed: vertices in local ENU metres
+  std::vector<FogVolume> fog;        // key weather.fog (SENSOR-SPEC §10)
+  double fog_backscatter_ratio_sr = 0.0154;  // key weather.backscatter_ratio_sr
 };
 
 struct Scenario {

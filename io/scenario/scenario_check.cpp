@@ -12,6 +12,7 @@
 #include "io/files/utf8_text.hpp"
 #include "io/scenario/value_ranges.hpp"
 #include "sensor/savitzky_golay.hpp"
+#include "sensor/weather.hpp"
 #include "sensor/scan_params_check.hpp"
 
 namespace owsim {
@@ -245,6 +246,35 @@ void check_meshes(const std::vector<MeshObject>& meshes, IdCheck& ids) {
   }
 }
 
+void check_fog(const SceneSpec& scene, IdCheck& ids) {
+  if (!(scene.fog_backscatter_ratio_sr >= 0.0 && std::isfinite(scene.fog_backscatter_ratio_sr))) {
+    throw input_error("weather.backscatter_ratio_sr",
+                      "must be a finite number ≥ 0, got " + number_text(scene.fog_backscatter_ratio_sr));
+  }
+  if (scene.fog.size() > kMaxFogVolumes) {
+    throw input_error("weather.fog", "at most " + std::to_string(kMaxFogVolumes) +
+                                         " volumes, got " + std::to_string(scene.fog.size()));
+  }
+  for (std::size_t i = 0; i < scene.fog.size(); ++i) {
+    const FogVolume& volume = scene.fog[i];
+    const std::string key = indexed("weather.fog", i);
+    ids.add(volume.id, key);
+    require_positive(volume.visibility_m, key + ".visibility_m");
+    if (volume.shape == FogShape::layer &&
+        !(std::isfinite(volume.base_m) && std::isfinite(volume.top_m) &&
+          volume.top_m > volume.base_m)) {
+      throw input_error(key + ".layer", "the top must lie above the base, got base " +
+                                            number_text(volume.base_m) + " m, top " +
+                                            number_text(volume.top_m) + " m");
+    }
+    if (volume.shape == FogShape::box &&
+        !(volume.box.min().allFinite() && volume.box.max().allFinite() &&
+          (volume.box.max() - volume.box.min()).minCoeff() > 0.0)) {
+      throw input_error(key + ".box", "needs finite sides with min < max on every axis");
+    }
+  }
+}
+
 void check_scene(const Scenario& scenario) {
   const SceneSpec& scene = scenario.scene;
   require_fraction(scene.terrain.reflectivity, "scene.terrain.reflectivity");
@@ -261,6 +291,7 @@ void check_scene(const Scenario& scenario) {
   check_cylinders(scene.poles, "scene.poles", ids);
   check_cylinders(scene.trees, "scene.trees", ids);
   check_meshes(scene.meshes, ids);
+  check_fog(scene, ids);
   if (scene.forest)
     (void)generate_forest(*scene.forest, scenario.seed, scene.terrain, "scene.forest");
 }

@@ -96,6 +96,7 @@ class ScenarioReader {
     if (const auto scene = root.get("scene")) {
       read_scene(*scene);
     }
+    if (const auto weather = root.get("weather")) read_weather(*weather);
     root.finish();
 
     scenario_.scan.counter = scenario_.receiver.counter;
@@ -343,6 +344,64 @@ class ScenarioReader {
                   ")");
     }
     map.finish();
+  }
+
+  // ---- weather (SENSOR-SPEC §10) ----
+
+  // weather: {backscatter_ratio_sr, fog: [{id, visibility_m, box | layer}]}; a volume without a
+  // shape fills the whole sky.
+  void read_weather(const YamlValue& value) {
+    YamlMap map(value);
+    if (const auto ratio = map.get("backscatter_ratio_sr")) {
+      scenario_.scene.fog_backscatter_ratio_sr = ratio->number();
+      if (!(scenario_.scene.fog_backscatter_ratio_sr >= 0.0 &&
+            std::isfinite(scenario_.scene.fog_backscatter_ratio_sr))) {
+        ratio->fail("must be a finite number ≥ 0 (sr⁻¹)");
+      }
+    }
+    if (const auto fog = map.get("fog")) {
+      for (const YamlValue& item : fog->items()) read_fog_volume(item);
+    }
+    map.finish();
+  }
+
+  void read_fog_volume(const YamlValue& value) {
+    YamlMap map(value);
+    FogVolume volume;
+    volume.id = read_id(map);
+    volume.visibility_m = positive(map.require("visibility_m"));
+    const std::optional<YamlValue> box = map.get("box");
+    const std::optional<YamlValue> layer = map.get("layer");
+    if (box && layer) layer->fail("a volume is a box or a layer, not both");
+    if (layer) {
+      YamlMap heights(*layer);
+      volume.shape = FogShape::layer;
+      volume.base_m = heights.require("base_m").number();
+      const YamlValue top = heights.require("top_m");
+      volume.top_m = top.number();
+      heights.finish();
+      if (!(volume.top_m > volume.base_m)) {
+        top.fail("the layer's top must lie above its base (" + number_text(volume.base_m) +
+                 " m), got " + number_text(volume.top_m));
+      }
+    }
+    if (box) {
+      YamlMap sides(*box);
+      volume.shape = FogShape::box;
+      Eigen::Vector3d low, high;
+      const char* axes[3] = {"e", "n", "u"};
+      for (int axis = 0; axis < 3; ++axis) {
+        const YamlValue side = sides.require(axes[axis]);
+        const Eigen::Vector2d range = min_max(side);
+        if (!(range[1] > range[0])) side.fail("expected [min, max] with min < max");
+        low[axis] = range[0];
+        high[axis] = range[1];
+      }
+      sides.finish();
+      volume.box = Eigen::AlignedBox3d(low, high);
+    }
+    map.finish();
+    scenario_.scene.fog.push_back(std::move(volume));
   }
 
   // ---- positions ----

@@ -42,6 +42,8 @@ Scene build_scene(const Scenario& scenario) {
       for (Cylinder& tree : forest) scene.cylinders.push_back(std::move(tree));
     }
     scene.meshes = spec.meshes;
+    scene.fog = spec.fog;
+    scene.fog_backscatter_ratio_sr = spec.fog_backscatter_ratio_sr;
   } catch (const Error& error) {
     rethrow_in_file(scenario, error);
   }

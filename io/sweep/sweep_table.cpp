@@ -2,6 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <array>
 #include <map>
 #include <optional>
@@ -21,6 +22,7 @@ struct MemberRow {
   std::uint64_t frames = 0;
   std::uint64_t pulses = 0;
   std::array<std::uint64_t, kSurfaceClassCount> returns{};
+  bool has_fog = false;  // the member's summary counts fog returns (a scenario with weather)
   std::uint64_t second_returns = 0;
   std::vector<std::pair<std::size_t, double>> first_seen;  // (wire column, range)
 };
@@ -34,9 +36,14 @@ MemberRow read_member(const std::filesystem::path& path,
         nlohmann::json::parse(read_input_file(path, "member summary", std::uintmax_t{1} << 30));
     row.frames = summary.at("frames").get<std::uint64_t>();
     row.pulses = summary.at("pulses").get<std::uint64_t>();
+    const nlohmann::json& returns = summary.at("returns");
     for (std::size_t c = 0; c < kSurfaceClassCount; ++c) {
       const std::string name(to_string(kSurfaceClasses[c]));
-      row.returns[c] = summary.at("returns").at(name).get<std::uint64_t>();
+      if (kSurfaceClasses[c] == SurfaceClass::fog) {
+        row.has_fog = returns.contains(name);
+        if (!row.has_fog) continue;
+      }
+      row.returns[c] = returns.at(name).get<std::uint64_t>();
     }
     row.second_returns = summary.at("second_returns").get<std::uint64_t>();
     for (const nlohmann::json& object : summary.at("objects")) {
@@ -75,7 +82,10 @@ void write_sweep_table(const SweepSpec& spec, const std::filesystem::path& out) 
     text += csv_cell(variation.key);
   }
   text += ",frames,pulses";
+  // The fog column where some member flew in weather: clear-air tables keep their columns.
+  const bool fog = std::any_of(rows.begin(), rows.end(), [](const MemberRow& r) { return r.has_fog; });
   for (const SurfaceClass surface : kSurfaceClasses) {
+    if (surface == SurfaceClass::fog && !fog) continue;
     text += ",returns_";
     text += to_string(surface);
   }
@@ -96,9 +106,10 @@ void write_sweep_table(const SweepSpec& spec, const std::filesystem::path& out) 
       text += ',';
       append_csv_integer(text, static_cast<std::int64_t>(count));
     }
-    for (const std::uint64_t count : row.returns) {
+    for (std::size_t c = 0; c < kSurfaceClassCount; ++c) {
+      if (kSurfaceClasses[c] == SurfaceClass::fog && !fog) continue;
       text += ',';
-      append_csv_integer(text, static_cast<std::int64_t>(count));
+      append_csv_integer(text, static_cast<std::int64_t>(row.returns[c]));
     }
     text += ',';
     append_csv_integer(text, static_cast<std::int64_t>(row.second_returns));
