@@ -26,7 +26,8 @@ PlacedFrame random_frame(std::mt19937_64& random, std::int64_t frame) {
   const auto hits = static_cast<std::size_t>(count(random) % 50);
   for (std::size_t h = 0; h < hits; ++h) {
     placed.tally.object_hits.push_back(
-        {static_cast<std::uint32_t>(count(random)), real(random), real(random)});
+        {static_cast<std::uint32_t>(count(random)), static_cast<std::uint32_t>(count(random) % 2),
+         real(random), real(random)});
   }
   placed.points = count(random);
   placed.csv_bytes = count(random);

@@ -78,7 +78,7 @@ RunCheckpoint every_field_set() {
   c.run = {{"seed", 2024}, {"scenario_file", "0123456789abcdef"}, {"no_noise", false}};
   c.frames_done = 7;
   c.finishing = true;
-  c.summary.counts = {7, 142'464, {11, 22, 33, 44}, 5};
+  c.summary.counts = {7, 142'464, {11, 22, 33, 44, 55, 66}, 5};
   ObjectTruth seen;
   seen.returns = 12;
   seen.frames_seen = 3;
@@ -86,6 +86,9 @@ RunCheckpoint every_field_set() {
   seen.first_seen_range_m = 1.0 / 3.0;
   seen.min_range_m = std::numeric_limits<double>::denorm_min();
   seen.last_frame_seen = 6;
+  seen.seen_through_fog = 4;
+  seen.first_seen_clear_s = 2.0 / 3.0;
+  seen.first_seen_clear_range_m = 1e-300;
   ObjectTruth later = seen;
   later.returns = std::numeric_limits<std::uint64_t>::max();
   later.first_seen_s = -0.0;

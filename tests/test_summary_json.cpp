@@ -39,8 +39,9 @@ class SummaryJsonTest : public ::testing::Test {
   fs::path dir_;
 };
 
-// A scene of `wires` conductors, `trees` trees and `meshes` buildings with awkward ids.
-Scene scene_of(int wires, int trees, int meshes) {
+// A scene of `wires` conductors, `trees` trees and `meshes` buildings with awkward ids, in fog
+// when `fog`.
+Scene scene_of(int wires, int trees, int meshes, bool fog = false) {
   Scene scene;
   const char* odd[] = {"a \"quoted\" id", "back\\slash", "tab\there", "nl\nid", "ünïcödé ✓", "\x01"};
   for (int i = 0; i < wires; ++i) {
@@ -56,6 +57,7 @@ Scene scene_of(int wires, int trees, int meshes) {
     mesh.id = "barn \"" + std::to_string(i) + "\"";
     mesh.surface = i % 4 == 3 ? SurfaceClass::pole : SurfaceClass::building;
   }
+  if (fog) scene.fog.push_back(FogVolume{"haze", 300.0});
   return scene;
 }
 
@@ -72,6 +74,7 @@ FlightSummary random_summary(std::size_t objects, std::uint64_t seed, int frames
     for (int k = 0; k < 40; ++k) {
       const double range = std::pow(10.0, 4.0 * unit(rng) - 1.0);
       tally.object_hits.push_back({static_cast<std::uint32_t>(rng() % (objects / 3 + 1)),
+                                   static_cast<std::uint32_t>(rng() % 2),
                                    frame * 0.33 + unit(rng) * 0.3, range});
     }
     summary.add_frame(frame, tally);
@@ -91,6 +94,8 @@ std::string oracle_text(const FlightSummary& summary, const Scene& scene,
                      {"tree", summary.returns_of(SurfaceClass::tree)},
                      {"ground", summary.returns_of(SurfaceClass::ground)},
                      {"building", summary.returns_of(SurfaceClass::building)}};
+  const bool weather = !scene.fog.empty();
+  if (weather) head["returns"]["fog"] = summary.returns_of(SurfaceClass::fog);
   std::map<std::string, std::pair<int, int>> by_class = {
       {"wire", {}}, {"pole", {}}, {"tree", {}}, {"building", {}}};
   nlohmann::json objects = nlohmann::json::array();
@@ -122,6 +127,12 @@ std::string oracle_text(const FlightSummary& summary, const Scene& scene,
                        {"first_seen_s", optional(truth.seen(), truth.first_seen_s)},
                        {"first_seen_range_m", optional(truth.seen(), truth.first_seen_range_m)},
                        {"min_range_m", optional(truth.seen(), truth.min_range_m)}});
+    if (weather) {
+      objects.back()["seen_through_fog"] = truth.seen_through_fog;
+      objects.back()["first_seen_clear_s"] = optional(truth.seen_clear(), truth.first_seen_clear_s);
+      objects.back()["first_seen_clear_range_m"] =
+          optional(truth.seen_clear(), truth.first_seen_clear_range_m);
+    }
   }
   for (const auto& [surface, counts] : by_class) {
     head["objects_by_class"][surface] = {{"objects", counts.first}, {"seen", counts.second}};
@@ -135,11 +146,12 @@ std::string oracle_text(const FlightSummary& summary, const Scene& scene,
 TEST_F(SummaryJsonTest, TextIsNlohmannsForTheSameDocument) {
   const nlohmann::json facts = {{"scenario", "corridor"}, {"seed", 2024}, {"wall_s", 0.1 + 0.2},
                                 {"setup_s", 1e-7},        {"threads", 2},  {"version", "0.1.0"}};
-  for (const auto& [wires, trees, meshes] :
-       {std::tuple{0, 0, 0}, {3, 0, 0}, {0, 7, 0}, {59, 417, 5}, {6, 3000, 0}, {0, 0, 9}}) {
+  for (const auto& [wires, trees, meshes, fog] :
+       {std::tuple{0, 0, 0, false}, {3, 0, 0, false}, {0, 7, 0, false}, {59, 417, 5, false},
+        {6, 3000, 0, false}, {0, 0, 9, false}, {59, 417, 5, true}, {0, 0, 0, true}}) {
     SCOPED_TRACE(std::to_string(wires) + " wires, " + std::to_string(trees) + " trees, " +
-                 std::to_string(meshes) + " meshes");
-    const Scene scene = scene_of(wires, trees, meshes);
+                 std::to_string(meshes) + " meshes" + (fog ? ", fog" : ""));
+    const Scene scene = scene_of(wires, trees, meshes, fog);
     const std::size_t objects = scene.conductors.size() + scene.cylinders.size() + scene.meshes.size();
     const FlightSummary summary = random_summary(objects, objects + 1, objects == 0 ? 0 : 25);
     const fs::path path = dir_ / "summary.json";
@@ -163,7 +175,8 @@ TEST_F(SummaryJsonTest, ACheckpointCostsTheObjectsSeenNotTheObjectsTallied) {
   // A million objects, three seen: the checkpoint holds three, and restores to the same summary.
   FlightSummary summary(1'000'000);
   FrameTally tally;
-  tally.object_hits = {{999'999, 0.5, 812.25}, {3, 0.6, 95.0}, {999'999, 0.7, 811.0}, {42, 0.8, 1}};
+  tally.object_hits = {
+      {999'999, 0, 0.5, 812.25}, {3, 1, 0.6, 95.0}, {999'999, 0, 0.7, 811.0}, {42, 0, 0.8, 1}};
   summary.add_frame(0, tally);
   const FlightSummaryCheckpoint checkpoint = summary.checkpoint();
   ASSERT_EQ(checkpoint.seen.size(), 3u);
@@ -171,6 +184,11 @@ TEST_F(SummaryJsonTest, ACheckpointCostsTheObjectsSeenNotTheObjectsTallied) {
   EXPECT_EQ(checkpoint.seen[0].truth.returns, 2u);
   EXPECT_EQ(checkpoint.seen[0].truth.first_seen_range_m, 812.25);
   EXPECT_EQ(checkpoint.seen[0].truth.min_range_m, 811.0);
+  // Object 3 was seen only through fog: never clear.
+  EXPECT_EQ(checkpoint.seen[1].index, 3u);
+  EXPECT_EQ(checkpoint.seen[1].truth.seen_through_fog, 1u);
+  EXPECT_FALSE(checkpoint.seen[1].truth.seen_clear());
+  EXPECT_EQ(checkpoint.seen[0].truth.first_seen_clear_range_m, 812.25);
   RunCheckpoint run;
   run.summary = checkpoint;
   const fs::path path = dir_ / ".owsim-resume";
@@ -195,7 +213,7 @@ TEST_F(SummaryJsonTest, ACheckpointCostsTheObjectsSeenNotTheObjectsTallied) {
   EXPECT_THROW(FlightSummary(1'000'000).restore(bad), Error);
   // A hit on an object the summary does not tally.
   FrameTally outside;
-  outside.object_hits = {{1'000'000, 0.1, 5.0}};
+  outside.object_hits = {{1'000'000, 0, 0.1, 5.0}};
   EXPECT_THROW(summary.add_frame(1, outside), Error);
 }
 

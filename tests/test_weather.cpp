@@ -222,8 +222,19 @@ TEST_F(WeatherRuns, ALayerOfFogMatchesTheClosedForm) {
   std::ifstream file(dir_ / "fog/summary.json");
   const nlohmann::json summary = nlohmann::json::parse(file);
   EXPECT_EQ(summary["returns"]["fog"], fog);
+  // Every wire return came through the deck: seen through fog, never clear.
+  long wire_returns = 0;
+  for (const auto& object : summary["objects"]) {
+    if (object["class"] != "wire" || object["returns"] == 0) continue;
+    wire_returns += object["returns"].get<long>();
+    EXPECT_EQ(object["seen_through_fog"], object["returns"]) << object.dump();
+    EXPECT_TRUE(object["first_seen_clear_range_m"].is_null()) << object.dump();
+  }
+  EXPECT_GT(wire_returns, 10);  // 6 frames: the wires come into view at the end
   std::ifstream clear_file(dir_ / "clear/summary.json");
-  EXPECT_FALSE(nlohmann::json::parse(clear_file)["returns"].contains("fog"));
+  const nlohmann::json clear = nlohmann::json::parse(clear_file);
+  EXPECT_FALSE(clear["returns"].contains("fog"));
+  EXPECT_FALSE(clear["objects"][0].contains("seen_through_fog"));
 }
 
 // The example's first 10 s, the bank between the helicopter and the span: MilOWS records the wire

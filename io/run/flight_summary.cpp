@@ -49,8 +49,11 @@ void FlightSummary::tally(std::size_t object_count, std::span<const Pulse> pulse
     for (int r = 0; r < pulse_returns.count; ++r) {
       const Return& ret = pulse_returns.returns[r];
       ++out.returns_by_class[std::min<std::size_t>(ret.surface, kSurfaceClassCount - 1)];
-      if (ret.object_index >= object_count) continue;  // the terrain
-      out.object_hits.push_back({ret.object_index, pulses[k].time_s, ret.true_range_m});
+      if (ret.object_index >= object_count) continue;  // the terrain, fog
+      const bool through_fog =
+          r == 1 && pulse_returns.returns[0].surface == static_cast<std::uint8_t>(SurfaceClass::fog);
+      out.object_hits.push_back({ret.object_index, through_fog ? 1u : 0u, pulses[k].time_s,
+                                 ret.true_range_m});
     }
   }
 }
@@ -73,6 +76,12 @@ void FlightSummary::add_frame(std::int64_t frame, const FrameTally& tally) {
       truth.first_seen_s = hit.time_s;
       truth.first_seen_range_m = hit.true_range_m;
       truth.min_range_m = hit.true_range_m;
+    }
+    if (hit.through_fog != 0) {
+      ++truth.seen_through_fog;
+    } else if (!truth.seen_clear()) {
+      truth.first_seen_clear_s = hit.time_s;
+      truth.first_seen_clear_range_m = hit.true_range_m;
     }
     ++truth.returns;
     if (truth.last_frame_seen != frame) {

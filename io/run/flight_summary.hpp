@@ -15,10 +15,10 @@
 
 namespace owsim {
 
-// What the frames so far showed of one scene object: plain numbers, 48 bytes an object, so a
-// forest of a million trees costs 48 MB here and nothing else per object. Its id and class are the
+// What the frames so far showed of one scene object: plain numbers, 72 bytes an object, so a
+// forest of a million trees costs 72 MB here and nothing else per object. Its id and class are the
 // scene's (object_ids(), summary_json.hpp). The ranges and first time mean something only once
-// seen() (they are 0 before).
+// seen() (they are 0 before); the clear ones once seen_clear().
 struct ObjectTruth {
   std::uint64_t returns = 0;
   std::uint64_t frames_seen = 0;
@@ -26,7 +26,13 @@ struct ObjectTruth {
   double first_seen_range_m = 0.0;  // the true range of the first return on it
   double min_range_m = 0.0;
   std::int64_t last_frame_seen = -1;
+  // Returns that were a second return behind a fog return (SENSOR-SPEC §10 "seen through"), and
+  // the first return on the object that was not.
+  std::uint64_t seen_through_fog = 0;
+  double first_seen_clear_s = 0.0;
+  double first_seen_clear_range_m = 0.0;
   [[nodiscard]] bool seen() const { return returns > 0; }
+  [[nodiscard]] bool seen_clear() const { return returns > seen_through_fog; }
   friend bool operator==(const ObjectTruth&, const ObjectTruth&) = default;
 };
 
@@ -62,7 +68,8 @@ struct FrameTally {
   // A return on a scene object (not the ground), in pulse order.
   struct ObjectHit {
     std::uint32_t object = 0;
-    double time_s = 0.0;  // the pulse's
+    std::uint32_t through_fog = 0;  // 1: a second return behind a fog return
+    double time_s = 0.0;            // the pulse's
     double true_range_m = 0.0;
   };
   std::uint64_t pulses = 0;

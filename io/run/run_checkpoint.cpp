@@ -20,7 +20,7 @@ using nlohmann::json;
 
 constexpr std::string_view kMagic = "OWSIMRUN";  // then the version, the checksum and the body
 constexpr std::size_t kHeaderBytes = kMagic.size() + 4 + 8;
-constexpr std::size_t kSeenObjectBytes = 4 + 8 + 8 + 8 + 8 + 8 + 8;
+constexpr std::size_t kSeenObjectBytes = 4 + 8 + 8 + 8 + 8 + 8 + 8 + 8 + 8 + 8;
 constexpr std::size_t kLargestMapMask = std::size_t{1} << 28;
 
 // Which of a checkpoint's optional states follow, one bit each.
@@ -99,6 +99,9 @@ void put_summary(BinaryRecordWriter& out, const FlightSummaryCheckpoint& summary
     out.put(seen.truth.first_seen_range_m);
     out.put(seen.truth.min_range_m);
     out.put(seen.truth.last_frame_seen);
+    out.put(seen.truth.seen_through_fog);
+    out.put(seen.truth.first_seen_clear_s);
+    out.put(seen.truth.first_seen_clear_range_m);
   }
 }
 
@@ -121,6 +124,9 @@ FlightSummaryCheckpoint summary_of(BinaryRecordReader& in) {
     object.truth.first_seen_range_m = in.get_double();
     object.truth.min_range_m = in.get_double();
     object.truth.last_frame_seen = in.get<std::int64_t>();
+    object.truth.seen_through_fog = in.get<std::uint64_t>();
+    object.truth.first_seen_clear_s = in.get_double();
+    object.truth.first_seen_clear_range_m = in.get_double();
   }
   return summary;
 }

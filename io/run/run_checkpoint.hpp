@@ -14,7 +14,7 @@
 // The file: "OWSIMRUN", the format version (u32), an FNV-1a 64 checksum of the body (u64), and
 // the body — little-endian fields in a fixed order (io/files/binary_record.hpp): the run as JSON
 // text, the frame count, the summary totals, the number of objects tallied and each seen object
-// (52 bytes: its index and its ObjectTruth, doubles as their exact bits), then the outputs'
+// (76 bytes: its index and its ObjectTruth, doubles as their exact bits), then the outputs'
 // states, the map mask run-length coded. Its size and the time to write it grow with the objects
 // seen, not with the scene: a million unseen trees cost nothing. A checkpoint changed by a single
 // byte is refused ("damaged checkpoint"), never resumed into spliced outputs; so is one of
@@ -36,7 +36,9 @@
 namespace owsim {
 
 inline constexpr std::string_view kRunCheckpointFileName = ".owsim-resume";
-inline constexpr int kRunCheckpointVersion = 3;  // 3: binary (1, 2: JSON, in .owsim-resume.json)
+// 3: binary (1, 2: JSON, in .owsim-resume.json); 4: the building and fog classes, returns seen
+// through fog
+inline constexpr int kRunCheckpointVersion = 4;
 // Where owsim wrote its JSON checkpoints (versions 1 and 2); --resume refuses one left there.
 inline constexpr std::string_view kJsonRunCheckpointFileName = ".owsim-resume.json";
 

@@ -55,19 +55,29 @@ void append_string(std::string& out, std::string_view text) {
   }
 }
 
-// One entry of the objects array, at the array's depth.
+// One entry of the objects array, at the array's depth. In weather (SENSOR-SPEC §10) it also says
+// how many returns saw the object through fog and when it was first seen without that.
 void append_object(std::string& out, std::string_view id, SurfaceClass surface,
-                   const ObjectTruth& truth) {
-  const auto number = [&](double value) {
-    if (truth.seen()) {
+                   const ObjectTruth& truth, bool weather) {
+  const auto number_if = [&](bool known, double value) {
+    if (known) {
       out += json_text(nlohmann::json(value));
     } else {
       out += "null";
     }
   };
+  const auto number = [&](double value) { number_if(truth.seen(), value); };
   out += "    {\n      \"class\": \"";
   out += to_string(surface);
-  out += "\",\n      \"first_seen_range_m\": ";
+  if (weather) {
+    out += "\",\n      \"first_seen_clear_range_m\": ";
+    number_if(truth.seen_clear(), truth.first_seen_clear_range_m);
+    out += ",\n      \"first_seen_clear_s\": ";
+    number_if(truth.seen_clear(), truth.first_seen_clear_s);
+    out += ",\n      \"first_seen_range_m\": ";
+  } else {
+    out += "\",\n      \"first_seen_range_m\": ";
+  }
   number(truth.first_seen_range_m);
   out += ",\n      \"first_seen_s\": ";
   number(truth.first_seen_s);
@@ -79,6 +89,10 @@ void append_object(std::string& out, std::string_view id, SurfaceClass surface,
   number(truth.min_range_m);
   out += ",\n      \"returns\": ";
   append_integer(out, truth.returns);
+  if (weather) {
+    out += ",\n      \"seen_through_fog\": ";
+    append_integer(out, truth.seen_through_fog);
+  }
   out += "\n    }";
 }
 
@@ -133,7 +147,8 @@ void write_summary_json(const std::filesystem::path& path, const FlightSummary& 
     for (std::size_t i = 0; i < truths.size(); ++i) {
       entry.clear();
       if (i > 0) entry += ",\n";
-      append_object(entry, named_object_id(scene, i), named_object_class(scene, i), truths[i]);
+      append_object(entry, named_object_id(scene, i), named_object_class(scene, i), truths[i],
+                    !scene.fog.empty());
       out += entry;
     }
     out += "\n  ]\n}\n";
