@@ -127,6 +127,24 @@ void select_returns(std::span<Candidate> candidates, const ReceiverParams& p, st
   }
   set_no_returns(p, out);
   if (candidates.empty()) return;
+  if (candidates.size() == 2 && p.rule == ReturnRule::first_second) {
+    // Two candidates (a fog echo and what lies behind it, a wire and the ground): no sorting.
+    const Candidate& a = candidates[0];
+    const Candidate& b = candidates[1];
+    const bool a_in = registers(a, p);
+    const bool b_in = registers(b, p);
+    const Candidate* chosen[2] = {nullptr, nullptr};
+    if (a_in && b_in) {
+      const Candidate& first = nearer(a, b) ? a : b;
+      const Candidate& second = &first == &a ? b : a;
+      chosen[0] = &first;
+      if (second.range_m >= first.range_m + p.min_return_separation_m) chosen[1] = &second;
+    } else if (a_in || b_in) {
+      chosen[0] = a_in ? &a : &b;
+    }
+    if (chosen[0] != nullptr) record_returns(chosen, p, seed, frame, pulse, out);
+    return;
+  }
   // SENSOR-SPEC §7 pinned return selection.
   const std::span<Candidate> detected(
       candidates.begin(), std::partition(candidates.begin(), candidates.end(),
