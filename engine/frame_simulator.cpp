@@ -3,12 +3,10 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include <algorithm>
 #include <array>
 
 #include "engine/flush_to_zero.hpp"
 #include "geometry/error.hpp"
-#include "sensor/range_counter.hpp"
 #include "sensor/scan_params_check.hpp"
 
 namespace owsim {
@@ -60,7 +58,7 @@ void FrameSimulator::receive_range(FrameResult& out, std::span<const PulseCandid
   const ScanParams& scan = params_.scan;
   const ReceiverParams& receiver = params_.receiver;
   std::array<Candidate, PulseCandidates::kMaxWires + 1> gathered;
-  std::array<Candidate, PulseCandidates::kMaxWires + 1 + kMaxVolumeRuns> weathered;
+  WeatherCandidates weathered;
   for (int k = begin; k < end; ++k) {
     const auto index = static_cast<std::size_t>(k);
     PulseReturns& returns = out.returns[index];
@@ -73,21 +71,8 @@ void FrameSimulator::receive_range(FrameResult& out, std::span<const PulseCandid
     }
     const PulseCandidates& met = candidates[static_cast<std::size_t>(k - begin)];
     if (!weather_.empty()) {
-      // SENSOR-SPEC §10: the path through the media up to the solid hit (or the timeout).
-      std::size_t hard = 0;
-      if (met.wires().empty()) {
-        if (met.has_solid()) weathered[hard++] = met.solid();
-      } else {
-        const std::span<Candidate> list = met.gather(gathered);
-        hard = list.size();
-        std::copy(list.begin(), list.end(), weathered.begin());
-      }
-      const double end_m =
-          met.has_solid() ? met.solid().range_m : timeout_range_m(receiver.counter);
-      const std::size_t n =
-          apply_weather(weather_, out.rays[index], end_m, receiver, weathered, hard);
-      select_returns(std::span<Candidate>(weathered.data(), n), receiver, params_.seed, out.frame,
-                     k, returns);
+      select_returns(weathered_candidates(weather_, out.rays[index], met, receiver, weathered),
+                     receiver, params_.seed, out.frame, k, returns);
       continue;
     }
     // Most pulses meet one surface or none and no wire: no gathering for them.

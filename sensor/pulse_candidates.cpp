@@ -90,7 +90,7 @@ void PulseCandidates::offer_wire(const Candidate& candidate) {
   if (candidate.energy_rel > weakest->energy_rel) *weakest = candidate;
 }
 
-std::span<Candidate> PulseCandidates::gather(std::array<Candidate, kMaxWires + 1>& out) const {
+std::span<Candidate> PulseCandidates::gather(std::span<Candidate> out) const {
   std::size_t n = 0;
   for (int i = 0; i < wire_count_; ++i) {
     const Candidate& wire = wires_[static_cast<std::size_t>(i)];

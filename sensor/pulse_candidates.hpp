@@ -81,8 +81,8 @@ class PulseCandidates {
     return {wires_.data(), static_cast<std::size_t>(wire_count_)};
   }
   // The candidates the receiver sees: wires nearer than the solid hit, then the solid hit.
-  // Returns the used prefix of `out`.
-  std::span<Candidate> gather(std::array<Candidate, kMaxWires + 1>& out) const;
+  // Returns the used prefix of `out`, which holds at least kMaxWires + 1.
+  std::span<Candidate> gather(std::span<Candidate> out) const;
 
  private:
   std::array<Candidate, kMaxWires> wires_{};

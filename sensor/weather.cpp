@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "geometry/error.hpp"
+#include "sensor/range_counter.hpp"
 
 namespace owsim {
 namespace {
@@ -170,6 +171,20 @@ std::size_t apply_weather(const WeatherMedia& media, const PulseRay& ray, double
   const std::size_t added = std::min(runs.size(), buffer.size() - kept);
   for (std::size_t r = 0; r < added; ++r) buffer[kept + r] = runs[r].candidate();
   return kept + added;
+}
+
+std::span<Candidate> weathered_candidates(const WeatherMedia& media, const PulseRay& ray,
+                                          const PulseCandidates& met,
+                                          const ReceiverParams& receiver,
+                                          WeatherCandidates& buffer) {
+  std::size_t hard = 0;
+  if (met.wires().empty()) {
+    if (met.has_solid()) buffer[hard++] = met.solid();  // most pulses: no gathering
+  } else {
+    hard = met.gather(buffer).size();
+  }
+  const double end_m = met.has_solid() ? met.solid().range_m : timeout_range_m(receiver.counter);
+  return {buffer.data(), apply_weather(media, ray, end_m, receiver, buffer, hard)};
 }
 
 }  // namespace owsim

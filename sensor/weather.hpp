@@ -107,4 +107,14 @@ class MediumPath {
                                         double end_m, const ReceiverParams& receiver,
                                         std::span<Candidate> buffer, std::size_t count);
 
+// Room for what one pulse hands the receiver in weather: its wires, its solid hit, the volumes'.
+using WeatherCandidates = std::array<Candidate, PulseCandidates::kMaxWires + 1 + kMaxVolumeRuns>;
+// What the receiver sees of a pulse that met `met` along `ray`: its candidates (gather) through the
+// media up to its solid hit, or the timeout range when it has none  (SENSOR-SPEC §10)
+[[nodiscard]] std::span<Candidate> weathered_candidates(const WeatherMedia& media,
+                                                        const PulseRay& ray,
+                                                        const PulseCandidates& met,
+                                                        const ReceiverParams& receiver,
+                                                        WeatherCandidates& buffer);
+
 }  // namespace owsim

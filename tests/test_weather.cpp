@@ -297,6 +297,25 @@ TEST_F(WeatherRuns, BadWeatherGivesOneLineAndNoOutput) {
   }
 }
 
+// A fog layer merged into a recording of empty sky writes the words of the fog flown alone.
+TEST_F(WeatherRuns, MergingFogIntoAnEmptySkyEqualsFlyingIt) {
+  std::string sky = kLayerScenario;
+  sky.replace(sky.find("terrain: {flat_u: 0}"), 20, "terrain: none");
+  sky.erase(sky.find("  spans:"));
+  const std::string fog =
+      sky + "weather:\n  fog:\n    - {id: deck, visibility_m: 20, layer: {base_m: 45, top_m: 46}}\n";
+  ASSERT_EQ(run("sky", sky, "3").exit_status, 0);
+  ASSERT_EQ(run("fog", fog, "3").exit_status, 0);
+  const CliResult merged = run_cli(
+      {"merge", (dir_ / "sky/flight.d64").string(), "--scenario", (dir_ / "fog.yaml").string(),
+       "--out", (dir_ / "merged.d64").string(), "--no-noise", "--quiet"},
+      dir_.path());
+  ASSERT_EQ(merged.exit_status, 0) << merged.err;
+  const std::string words = test::read_whole_file(dir_ / "fog/flight.d64");
+  EXPECT_GT(words.size(), 100'000u);
+  EXPECT_TRUE(test::read_whole_file(dir_ / "merged.d64") == words);
+}
+
 // A weather key without volumes changes nothing: every output byte for byte the clear run's.
 TEST_F(WeatherRuns, WeatherWithoutVolumesChangesNoByte) {
   ASSERT_EQ(run("plain", kLayerScenario, "3").exit_status, 0);

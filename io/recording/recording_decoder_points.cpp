@@ -100,7 +100,7 @@ DecodeReport decode_recording_points(RecordingDecoder& decoder, const RecordingS
   std::vector<Label> labels;  // two per pulse
   std::vector<PointRecord> points;
   std::array<Candidate, PulseCandidates::kMaxWires + 1> gathered;
-  std::array<Candidate, PulseCandidates::kMaxWires + 1 + kMaxVolumeRuns> weathered;
+  WeatherCandidates weathered;
   while (decoder.next(frame)) {
     ++report.frames;
     ++report.frames_by_beta_source[static_cast<std::size_t>(frame.beta_source)];
@@ -118,15 +118,10 @@ DecodeReport decode_recording_points(RecordingDecoder& decoder, const RecordingS
       candidates.resize(frame.size());
       tracer.trace(rays, active, candidates);
       for (std::size_t j = 0; j < frame.size(); ++j) {
-        std::span<const Candidate> met = candidates[j].gather(gathered);
-        if (!weather.empty()) {
-          std::copy(met.begin(), met.end(), weathered.begin());
-          const double end_m = candidates[j].has_solid() ? candidates[j].solid().range_m
-                                                         : timeout_range_m(counter);
-          met = std::span<const Candidate>(
-              weathered.data(),
-              apply_weather(weather, rays[j], end_m, scenario.receiver, weathered, met.size()));
-        }
+        const std::span<const Candidate> met =
+            weather.empty()
+                ? candidates[j].gather(gathered)
+                : weathered_candidates(weather, rays[j], candidates[j], scenario.receiver, weathered);
         for (int r = 0; r < returns[j].count; ++r) {
           if (const auto match = nearest_candidate(met, returns[j].returns[r].range_m, tolerance)) {
             labels[2 * j + static_cast<std::size_t>(r)] = Label{true, *match};

@@ -16,6 +16,7 @@
 #include "sensor/hellas_scan.hpp"
 #include "sensor/range_counter.hpp"
 #include "sensor/scan_pattern.hpp"
+#include "sensor/weather.hpp"
 
 namespace owsim {
 namespace {
@@ -170,6 +171,9 @@ MergeReport merge_recording(RecordingDecoder& decoder, const RecordingScene& sce
   }
 
   const FrameTracer tracer(scene.embree_scene(), TraceApi::stream);
+  const Scene& objects = scene.scene();
+  const WeatherMedia weather(objects.fog, objects.fog_backscatter_ratio_sr,
+                             fog_object_index(objects), receiver);
   MergeReport report;
   DecodedFrame frame;
   std::vector<PulseRay> rays;
@@ -202,14 +206,20 @@ MergeReport merge_recording(RecordingDecoder& decoder, const RecordingScene& sce
     tbb::parallel_for(
         tbb::blocked_range<std::size_t>(0, frame.size(), 1024), [&](const auto& range) {
           std::array<Candidate, PulseCandidates::kMaxWires + 1> gathered;
+          WeatherCandidates weathered;
           for (std::size_t j = range.begin(); j < range.end(); ++j) {
             const Pulse& pulse = frame.pulses[j];
             if (pulse.reference) {
               merged[j] = MergedCounters{frame.counter1[j], frame.counter2[j]};
               continue;
             }
-            const PulseReturns synthetic = select_returns(candidates[j].gather(gathered), receiver,
-                                                          scenario.seed, frame.frame, pulse.index);
+            // In weather the synthetic echoes cross the scenario's fog (SENSOR-SPEC §10).
+            const std::span<Candidate> met =
+                weather.empty()
+                    ? candidates[j].gather(gathered)
+                    : weathered_candidates(weather, rays[j], candidates[j], receiver, weathered);
+            const PulseReturns synthetic =
+                select_returns(met, receiver, scenario.seed, frame.frame, pulse.index);
             std::optional<std::uint16_t> solid;
             if (candidates[j].has_solid()) {
               solid = counter_from_range(candidates[j].solid().range_m, receiver.counter);
