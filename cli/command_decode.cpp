@@ -4,22 +4,37 @@
 
 #include <cstdint>
 #include <memory>
+#include <set>
+#include <string>
 
 #include "cli/commands.hpp"
 #include "cli/recording_command.hpp"
+#include "geometry/error.hpp"
 #include "io/recording/recording_decoder_points.hpp"
+#include "io/run/output_kind.hpp"
 
 namespace owsim::cli {
 namespace {
 
 struct DecodeOptions : RecordingCommandOptions {
   bool no_labels = false;
+  std::string outputs = "points";
 };
 
 void run_decode(const DecodeOptions& options) {
+  const std::set<OutputKind> outputs = parse_output_list(options.outputs);
+  for (const OutputKind kind : outputs) {
+    if (kind != OutputKind::csv && kind != OutputKind::las && kind != OutputKind::ply) {
+      throw input_error("--outputs", "decode writes points only: csv, las, ply or points, got " +
+                                         options.outputs);
+    }
+  }
   OpenRecording open(options);
   DecodePointsOptions points;
   points.directory = options.out;
+  points.csv = outputs.contains(OutputKind::csv);
+  points.las = outputs.contains(OutputKind::las);
+  points.ply = outputs.contains(OutputKind::ply);
   points.label_from_scene = !options.no_labels;
   points.on_frame = [&](std::uint64_t frames, std::uint64_t pulses) {
     open.progress.frame_done(frames, pulses);
@@ -58,6 +73,8 @@ void add_decode_command(CLI::App& app, CommandResult& /*result*/) {
        "output folder for the point files"});
   command->add_flag("--no-labels", options->no_labels,
                     "do not label returns from the scenario's objects (class `unknown`)");
+  command->add_option("--outputs", options->outputs,
+                      "comma list of csv, las, ply, or points for all three (default: points)");
   command->footer(
       "Pulses are numbered from the first frame gate and timed from their time tags (exactly "
       "start_s + n/PRF when the tags fall on the scenario's pulse grid, as owsim's do); β comes "

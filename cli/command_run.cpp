@@ -97,7 +97,8 @@ void add_run_command(CLI::App& app, CommandResult& /*result*/) {
   command->add_option("--seed", options->simulation.seed, "override the scenario's seed")
       ->check(seed_number());
   command->add_option("--outputs", options->outputs,
-                      "comma list of d64, points, trajectory, summary, quicklook (default: all)");
+                      "comma list of d64, points (or csv, las, ply on their own), trajectory, "
+                      "summary, quicklook (default: all)");
   command->add_flag("--no-noise", options->simulation.no_noise, "range noise off (σ = 0)");
   command->add_flag("--resume", options->run.resume,
                     "continue an interrupted run (same options) from its last complete frame");

@@ -97,18 +97,22 @@ struct Block {
     placed.frame = encoding.frame;
     placed.frame_start = encoding.frame_start;
     placed.tally = encoding.tally;
-    if (encoder.wants(OutputKind::points)) {
-      placed.points = encoding.points.size();
+    if (encoder.wants_points()) placed.points = encoding.points.size();
+    if (encoder.wants(OutputKind::csv)) {
       placed.csv_bytes = encoding.csv_rows.size();
+      bytes[kCsv].insert(bytes[kCsv].end(), encoding.csv_rows.begin(), encoding.csv_rows.end());
+    }
+    if (encoder.wants(OutputKind::las)) {
       placed.las.points = encoding.las.points;
       placed.las.points_by_return = encoding.las.points_by_return;
       placed.las.min_record = encoding.las.min_record;
       placed.las.max_record = encoding.las.max_record;
-      bytes[kCsv].insert(bytes[kCsv].end(), encoding.csv_rows.begin(), encoding.csv_rows.end());
       bytes[kLas].insert(bytes[kLas].end(), encoding.las.records.begin(),
                          encoding.las.records.begin() + static_cast<std::ptrdiff_t>(
                                                             encoding.las.points *
                                                             kLasPointRecordBytes));
+    }
+    if (encoder.wants(OutputKind::ply)) {
       bytes[kPly].insert(bytes[kPly].end(), encoding.ply_vertices.begin(),
                          encoding.ply_vertices.end());
     }

@@ -213,6 +213,20 @@ TEST(DecodeRoundTrip, RecordingWhoseTimeTagsWrapComesBack) {
   const auto info = run_cli(
       {"decode", "run/flight.d64", "--scenario", scenario.string(), "--out", "again"}, dir.path());
   EXPECT_NE(info.err.find("wrapped 1 time"), std::string::npos) << info.err;
+  // One point format on its own: the same bytes as with all three, and no other file.
+  const auto las = run_cli({"decode", "run/flight.d64", "--scenario", scenario.string(), "--out",
+                            "las_only", "--outputs", "las", "--quiet"},
+                           dir.path());
+  ASSERT_EQ(las.exit_status, 0) << las.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "las_only/points.csv"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "las_only/points.ply"));
+  EXPECT_TRUE(test::read_whole_file(dir / "las_only/points.las") ==
+              test::read_whole_file(dir / "again/points.las"));
+  const auto words = run_cli({"decode", "run/flight.d64", "--scenario", scenario.string(), "--out",
+                              "bad", "--outputs", "d64"},
+                             dir.path());
+  EXPECT_NE(words.exit_status, 0);
+  EXPECT_NE(words.err.find("decode writes points only"), std::string::npos) << words.err;
 }
 
 TEST(DecodeRoundTrip, RecordingCutMidFrameDecodesToTheSamePoints) {

@@ -19,7 +19,9 @@
 #include <vector>
 
 #include "cli_runner.hpp"
+#include "geometry/error.hpp"
 #include "geometry/geodetic_frame.hpp"
+#include "io/run/output_kind.hpp"
 #include "io/scenario/scenario_loader.hpp"
 #include "io/trajectory/hellsim_reader.hpp"
 #include "python_oracle.hpp"
@@ -425,6 +427,33 @@ TEST(RunOutputs, SameSeedGivesTheSameBytesWithOneAndTwoThreads) {
   EXPECT_EQ(a, b);
   EXPECT_EQ(a["frames"], kCorridorFrames);
   EXPECT_EQ(a["pulses"], kCorridorFrames * kPulsesPerFrame);
+}
+
+// Each point file on its own (`--outputs csv`, `las`, `ply`) is byte for byte the file `points`
+// writes, and comes alone.
+TEST(RunOutputs, EachPointFormatAloneIsTheFileOfPoints) {
+  const OwsimRun& all = corridor_threads(2);
+  ASSERT_EQ(all.result().exit_status, 0) << all.result().err;
+  for (const auto& [output, file] : {std::pair{"csv", "points.csv"}, std::pair{"las", "points.las"},
+                                     std::pair{"ply", "points.ply"}}) {
+    SCOPED_TRACE(output);
+    const OwsimRun alone(example("corridor"),
+                         {"--frames", std::to_string(kCorridorFrames), "--threads", "2",
+                          "--outputs", output});
+    ASSERT_EQ(alone.result().exit_status, 0) << alone.result().err;
+    EXPECT_EQ(files_under(alone.out()), std::set<fs::path>{file});
+    EXPECT_TRUE(test::read_whole_file(alone.out() / file) == test::read_whole_file(all.out() / file));
+  }
+}
+
+TEST(RunOutputs, OutputListsReadBack) {
+  EXPECT_EQ(output_list(parse_output_list("points")), "points");
+  EXPECT_EQ(output_list(parse_output_list("ply,csv,las")), "points");
+  EXPECT_EQ(output_list(parse_output_list("las,summary")), "las,summary");
+  EXPECT_EQ(parse_output_list("d64,points").size(), 4u);
+  EXPECT_TRUE(wants_points(parse_output_list("ply")));
+  EXPECT_FALSE(wants_points(parse_output_list("d64,summary,quicklook")));
+  EXPECT_THROW((void)parse_output_list("las,xyz"), Error);
 }
 
 TEST(RunOutputs, AnotherSeedGivesOtherWords) {

@@ -71,12 +71,16 @@ DecodeReport decode_recording_points(RecordingDecoder& decoder, const RecordingS
                      "cannot create the output folder: " + error.message());
   }
   std::vector<std::unique_ptr<PointSink>> sinks;
-  sinks.push_back(
-      std::make_unique<PointsCsvWriter>(options.directory / "points.csv", scene.object_ids()));
-  LasWriterOptions las;
-  las.origin = scene.local_frame().origin();
-  sinks.push_back(std::make_unique<LasWriter>(options.directory / "points.las", las));
-  sinks.push_back(std::make_unique<PlyWriter>(options.directory / "points.ply"));
+  if (options.csv) {
+    sinks.push_back(
+        std::make_unique<PointsCsvWriter>(options.directory / "points.csv", scene.object_ids()));
+  }
+  if (options.las) {
+    LasWriterOptions las;
+    las.origin = scene.local_frame().origin();
+    sinks.push_back(std::make_unique<LasWriter>(options.directory / "points.las", las));
+  }
+  if (options.ply) sinks.push_back(std::make_unique<PlyWriter>(options.directory / "points.ply"));
 
   const ScanParams& scan = decoder.scan();
   const RangeCounterParams& counter = scenario.receiver.counter;

@@ -30,7 +30,10 @@ namespace owsim {
 
 struct DecodePointsOptions {
   std::filesystem::path directory;  // points.csv, points.las, points.ply (created if need be)
-  bool label_from_scene = true;     // classes from the scenario's objects
+  bool csv = true;                  // which of the three point files to write
+  bool las = true;
+  bool ply = true;
+  bool label_from_scene = true;  // classes from the scenario's objects
   // Told after every frame how many frames and pulses are done (progress); may be empty.
   std::function<void(std::uint64_t frames, std::uint64_t pulses)> on_frame;
 };

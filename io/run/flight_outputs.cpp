@@ -157,12 +157,11 @@ void FlightOutputs::open_outputs(const Scene& scene, const RunCheckpoint* from) 
         AtomicOutputFile::require_resumable(final_path, writer->file_bytes);
       }
     };
-    const bool points = wants(OutputKind::points);
     check(wants(OutputKind::d64), directory / word_file_name(scan_), from->words);
-    check(points, directory / "points.csv", from->points_csv);
-    check(points, directory / "points.las",
+    check(wants(OutputKind::csv), directory / "points.csv", from->points_csv);
+    check(wants(OutputKind::las), directory / "points.las",
           from->points_las ? std::optional(from->points_las->file) : std::nullopt);
-    check(points, directory / "points.ply", from->points_ply);
+    check(wants(OutputKind::ply), directory / "points.ply", from->points_ply);
     check(wants(OutputKind::trajectory), directory / "trajectory.csv", from->trajectory);
   }
 
@@ -172,14 +171,15 @@ void FlightOutputs::open_outputs(const Scene& scene, const RunCheckpoint* from) 
       words_ = std::make_unique<WordSink>(directory, scan_, resume);
     }
   }
-  if (wants(OutputKind::points)) {
+  const std::filesystem::path csv = directory / "points.csv";
+  if (const auto* resume = state(&RunCheckpoint::points_csv, "points.csv");
+      wants(OutputKind::csv) && !committed(csv)) {
     std::vector<std::string> ids = object_ids(scene);
-    const std::filesystem::path csv = directory / "points.csv";
-    if (const auto* resume = state(&RunCheckpoint::points_csv, "points.csv"); !committed(csv)) {
-      points_csv_ = std::make_unique<PointsCsvWriter>(
-          resume ? PointsCsvWriter::resume(csv, std::move(ids), *resume)
-                 : PointsCsvWriter(csv, std::move(ids)));
-    }
+    points_csv_ = std::make_unique<PointsCsvWriter>(
+        resume ? PointsCsvWriter::resume(csv, std::move(ids), *resume)
+               : PointsCsvWriter(csv, std::move(ids)));
+  }
+  if (wants(OutputKind::las)) {
     LasWriterOptions las;
     las.origin = local_frame_->origin();
     const std::filesystem::path las_path = directory / "points.las";
@@ -188,11 +188,12 @@ void FlightOutputs::open_outputs(const Scene& scene, const RunCheckpoint* from) 
       points_las_ = std::make_unique<LasWriter>(resume ? LasWriter::resume(las_path, las, *resume)
                                                        : LasWriter(las_path, las));
     }
-    const std::filesystem::path ply = directory / "points.ply";
-    if (const auto* resume = state(&RunCheckpoint::points_ply, "points.ply"); !committed(ply)) {
-      points_ply_ =
-          std::make_unique<PlyWriter>(resume ? PlyWriter::resume(ply, *resume) : PlyWriter(ply));
-    }
+  }
+  const std::filesystem::path ply = directory / "points.ply";
+  if (const auto* resume = state(&RunCheckpoint::points_ply, "points.ply");
+      wants(OutputKind::ply) && !committed(ply)) {
+    points_ply_ =
+        std::make_unique<PlyWriter>(resume ? PlyWriter::resume(ply, *resume) : PlyWriter(ply));
   }
   if (wants(OutputKind::trajectory)) {
     const std::filesystem::path path = directory / "trajectory.csv";

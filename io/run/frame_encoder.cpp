@@ -17,8 +17,8 @@ FrameEncoder::FrameEncoder(const std::filesystem::path& directory,
       scan_(scan),
       local_frame_(&local_frame),
       object_count_(named_object_count(scene)) {
-  if (wants(OutputKind::points)) {
-    csv_.emplace((directory / "points.csv").string(), object_ids(scene));
+  if (wants(OutputKind::csv)) csv_.emplace((directory / "points.csv").string(), object_ids(scene));
+  if (wants(OutputKind::las)) {
     LasWriterOptions las;
     las.origin = local_frame.origin();
     las_.emplace((directory / "points.las").string(), las);
@@ -103,12 +103,12 @@ void FrameEncoder::finish_encoding(const FrameView& frame, const Pose& frame_sta
     if (wants(OutputKind::d64) && scan_.model == SensorModel::hellas) {
       out.hellas_header_word = hellas_file_header_word(frame.sweep, frame.pulses.front().time_s);
     }
-    if (wants(OutputKind::points)) {
+    if (wants_points()) {
       frame_points(frame, *local_frame_, out.points);
       out.csv_rows.clear();
-      csv_->encode(out.points, out.csv_rows);
-      las_->encode(out.points, out.las);
-      PlyWriter::encode(out.points, out.ply_vertices);
+      if (csv_) csv_->encode(out.points, out.csv_rows);
+      if (las_) las_->encode(out.points, out.las);
+      if (wants(OutputKind::ply)) PlyWriter::encode(out.points, out.ply_vertices);
     }
   } catch (...) {
     out.error = std::current_exception();

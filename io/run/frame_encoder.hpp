@@ -45,6 +45,7 @@ class FrameEncoder {
   void encode_frame(const FrameView& frame, const Pose& frame_start, FrameEncoding& out) const;
 
   [[nodiscard]] bool wants(OutputKind kind) const { return outputs_.contains(kind); }
+  [[nodiscard]] bool wants_points() const { return owsim::wants_points(outputs_); }
   [[nodiscard]] const ScanParams& scan() const { return scan_; }
 
  private:

@@ -8,11 +8,12 @@
 namespace owsim {
 namespace {
 
-constexpr std::pair<OutputKind, std::string_view> kNames[] = {{OutputKind::d64, "d64"},
-                                                              {OutputKind::points, "points"},
-                                                              {OutputKind::trajectory, "trajectory"},
-                                                              {OutputKind::summary, "summary"},
-                                                              {OutputKind::quicklook, "quicklook"}};
+constexpr std::pair<OutputKind, std::string_view> kNames[] = {
+    {OutputKind::d64, "d64"},         {OutputKind::csv, "csv"},
+    {OutputKind::las, "las"},         {OutputKind::ply, "ply"},
+    {OutputKind::trajectory, "trajectory"}, {OutputKind::summary, "summary"},
+    {OutputKind::quicklook, "quicklook"}};
+constexpr OutputKind kPointKinds[] = {OutputKind::csv, OutputKind::las, OutputKind::ply};
 
 }  // namespace
 
@@ -28,27 +29,42 @@ std::set<OutputKind> parse_output_list(std::string_view list) {
   while (begin <= list.size()) {
     const std::size_t comma = std::min(list.find(',', begin), list.size());
     const std::string_view item = list.substr(begin, comma - begin);
+    begin = comma + 1;
+    if (item == "points") {
+      kinds.insert(std::begin(kPointKinds), std::end(kPointKinds));
+      continue;
+    }
     const auto* known = std::find_if(std::begin(kNames), std::end(kNames),
                                      [&](const auto& entry) { return entry.second == item; });
     if (known == std::end(kNames)) {
       throw input_error("--outputs",
                         "unknown output '" + std::string(item) +
-                            "' (expected d64, points, trajectory, summary, quicklook)");
+                            "' (expected d64, points, csv, las, ply, trajectory, summary, "
+                            "quicklook)");
     }
     kinds.insert(known->first);
-    begin = comma + 1;
   }
   return kinds;
 }
 
 std::string output_list(const std::set<OutputKind>& outputs) {
+  const bool all_points = std::all_of(std::begin(kPointKinds), std::end(kPointKinds),
+                                      [&](OutputKind kind) { return outputs.contains(kind); });
   std::string list;
   for (const auto& [kind, name] : kNames) {
     if (!outputs.contains(kind)) continue;
+    const bool point_file = kind == OutputKind::csv || kind == OutputKind::las ||
+                            kind == OutputKind::ply;
+    if (all_points && point_file && kind != OutputKind::csv) continue;
     if (!list.empty()) list += ',';
-    list += name;
+    list += all_points && point_file ? std::string_view("points") : name;
   }
   return list;
+}
+
+bool wants_points(const std::set<OutputKind>& outputs) {
+  return std::any_of(std::begin(kPointKinds), std::end(kPointKinds),
+                     [&](OutputKind kind) { return outputs.contains(kind); });
 }
 
 std::string_view word_file_name(const ScanParams& scan) {

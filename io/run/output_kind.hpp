@@ -8,14 +8,18 @@
 
 namespace owsim {
 
-enum class OutputKind { d64, points, trajectory, summary, quicklook };
+// The point files are three outputs: points.csv, points.las, points.ply.
+enum class OutputKind { d64, csv, las, ply, trajectory, summary, quicklook };
 
-// "d64,summary" → {d64, summary}; the word file is flight.hellas for a HELLAS scenario. Throws
-// owsim::Error naming the unknown item.
+// "d64,summary" → {d64, summary}; `points` is csv, las and ply together; the word file is
+// flight.hellas for a HELLAS scenario. Throws owsim::Error naming the unknown item.
 [[nodiscard]] std::set<OutputKind> parse_output_list(std::string_view list);
-// The list parse_output_list reads back: the outputs in a fixed order, "d64,points,…".
+// The list parse_output_list reads back: the outputs in a fixed order, "d64,points,…" (`points`
+// for all three point files, else those chosen).
 [[nodiscard]] std::string output_list(const std::set<OutputKind>& outputs);
 [[nodiscard]] std::set<OutputKind> all_outputs();
+// Whether any point file is among `outputs`.
+[[nodiscard]] bool wants_points(const std::set<OutputKind>& outputs);
 
 // flight.d64 (MilOWS) or flight.hellas (HELLAS).
 [[nodiscard]] std::string_view word_file_name(const ScanParams& scan);
