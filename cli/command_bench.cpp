@@ -22,6 +22,8 @@ nlohmann::ordered_json to_json(const ThroughputReport& report) {
           {"trace_only_pulses_per_s", report.trace_only_pulses_per_s},
           {"brute_force_pulses_per_s", report.brute_force_pulses_per_s},
           {"single_thread_pulses_per_s", report.single_thread_pulses_per_s},
+          {"las_pulses_per_s", report.las_pulses_per_s},
+          {"points_pulses_per_s", report.points_pulses_per_s},
           {"realtime_factor", report.realtime_factor},
           {"trace_api", std::string(to_string(report.trace_api))},
           {"peak_rss_mb", report.peak_rss_mb},
@@ -51,6 +53,10 @@ void print_text(const ThroughputReport& r) {
   fmt::print("  single thread  {:>12.0f} pulses/s  end-to-end on {} threads is {:.2f}x\n",
              r.single_thread_pulses_per_s, r.threads,
              ratio(r.end_to_end_pulses_per_s, r.single_thread_pulses_per_s));
+  fmt::print("  points.las     {:>12.0f} pulses/s  {:.2f} of end-to-end (--outputs las)\n",
+             r.las_pulses_per_s, ratio(r.las_pulses_per_s, r.end_to_end_pulses_per_s));
+  fmt::print("  all points     {:>12.0f} pulses/s  {:.2f} of end-to-end (--outputs points)\n",
+             r.points_pulses_per_s, ratio(r.points_pulses_per_s, r.end_to_end_pulses_per_s));
   fmt::print("  brute force    {:>12.0f} pulses/s  ({} pulses traced), BVH trace is {:.0f}x\n",
              r.brute_force_pulses_per_s, r.brute_force_pulses,
              ratio(r.trace_only_pulses_per_s, r.brute_force_pulses_per_s));

@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
+#include <set>
 #include <vector>
 
 #include "cli/peak_memory.hpp"
@@ -118,12 +119,13 @@ double brute_force_seconds(const BruteForceTracer& tracer,
   });
 }
 
-// What `owsim run --outputs d64` does over the frames, into a scratch folder. Timed like
-// `owsim run`'s wall_s: the frame pipeline with every word written to the file's buffer, not the
-// final commit (flush, fsync, rename) that follows it.
-double end_to_end_seconds(const FrameSimulator& simulator, const FlightSetup& setup, int threads) {
+// What `owsim run --outputs <kinds>` does over the frames (d64 by default), into a scratch folder.
+// Timed like `owsim run`'s wall_s: the frame pipeline with every byte written to the files'
+// buffers, not the final commit (flush, fsync, rename) that follows it.
+double end_to_end_seconds(const FrameSimulator& simulator, const FlightSetup& setup, int threads,
+                          const std::set<OutputKind>& kinds = {OutputKind::d64}) {
   const ScratchFolder folder;
-  FlightOutputs outputs(flight_output_options(setup, folder.path(), {OutputKind::d64}), setup.scene,
+  FlightOutputs outputs(flight_output_options(setup, folder.path(), kinds), setup.scene,
                         setup.scenario.scan, setup.local_frame);
   const double seconds = seconds_of([&] {
     simulate_frames(simulator, setup, FlightRange{0, setup.frames}, threads, outputs);
@@ -195,6 +197,8 @@ ThroughputReport measure_throughput(const ThroughputOptions& options) {
   // End-to-end on every thread and on one, interleaved with trace-only of the winning form.
   double end_to_end_best = kNever;
   double single_thread_best = kNever;
+  double las_best = kNever;
+  double points_best = kNever;
   tbb::task_arena one_thread(1);
   for (int round = 1; round <= options.repeats; ++round) {
     trace_best[winner] = std::min(trace_best[winner], trace_seconds(tracer, frames, candidates));
@@ -204,6 +208,11 @@ ThroughputReport measure_throughput(const ThroughputOptions& options) {
         std::min(single_thread_best,
                  one_thread.execute([&] { return end_to_end_seconds(simulator, setup, 1); }));
     progress.note("single thread", round, options.repeats, rate(single_thread_best));
+    las_best = std::min(las_best, end_to_end_seconds(simulator, setup, threads, {OutputKind::las}));
+    progress.note("points.las", round, options.repeats, rate(las_best));
+    points_best = std::min(points_best, end_to_end_seconds(simulator, setup, threads,
+                                                           parse_output_list("points")));
+    progress.note("points", round, options.repeats, rate(points_best));
   }
 
   // Brute force on a subset, scaled to every active pulse of the frames.
@@ -226,6 +235,8 @@ ThroughputReport measure_throughput(const ThroughputOptions& options) {
   report.trace_only_pulses_per_s = rate(trace_best[winner]);
   report.brute_force_pulses_per_s = rate(brute_force_all_s);
   report.single_thread_pulses_per_s = rate(single_thread_best);
+  report.las_pulses_per_s = rate(las_best);
+  report.points_pulses_per_s = rate(points_best);
   report.realtime_factor = report.end_to_end_pulses_per_s / scan.prf_hz;
   report.trace_api = api;
   report.peak_rss_mb = peak_rss_mb();

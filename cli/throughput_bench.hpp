@@ -8,6 +8,8 @@
 //                  trace, receiver, word packing) writing flight.d64 / flight.hellas into a
 //                  temporary folder, the other outputs off (as on a long flight, --outputs d64);
 //   single_thread — the same end-to-end run in a TBB arena of one thread;
+//   las, points  — the same end-to-end run writing points.las alone (--outputs las), and the three
+//                  point files (--outputs points), instead of the words;
 //   brute_force  — the source's method (every ray against every segment, cylinder and triangle)
 //                  on an evenly spread subset of the frames' pulses, on the same threads,
 //                  scaled to the whole frames.
@@ -42,7 +44,9 @@ struct ThroughputReport {
   double trace_only_pulses_per_s = 0.0;
   double brute_force_pulses_per_s = 0.0;
   double single_thread_pulses_per_s = 0.0;
-  double realtime_factor = 0.0;  // end_to_end / the sensor's PRF
+  double las_pulses_per_s = 0.0;     // --outputs las
+  double points_pulses_per_s = 0.0;  // --outputs points (csv, las, ply)
+  double realtime_factor = 0.0;      // end_to_end / the sensor's PRF
   TraceApi trace_api = TraceApi::stream;
   double peak_rss_mb = 0.0;
   // Not in INTERFACE.md's list, reported beside it:
