@@ -16,5 +16,6 @@ void add_bench_command(CLI::App& app, CommandResult& result);
 void add_decode_command(CLI::App& app, CommandResult& result);
 void add_merge_command(CLI::App& app, CommandResult& result);
 void add_sweep_command(CLI::App& app, CommandResult& result);
+void add_view_command(CLI::App& app, CommandResult& result);
 
 }  // namespace owsim::cli

@@ -6,6 +6,8 @@ find_package(yaml-cpp REQUIRED)
 find_package(nlohmann_json 3 REQUIRED)
 find_package(CLI11 REQUIRED)
 find_package(fmt REQUIRED)
+find_package(ZLIB REQUIRED)   # deflate of the report page's data (io/report/)
+
 
 # GeographicLib ships only a find module on Debian; wrap its variables in a target.
 list(APPEND CMAKE_MODULE_PATH /usr/share/cmake/geographiclib)

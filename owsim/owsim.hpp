@@ -12,6 +12,7 @@
 // docs/embedding.md shows the same in C and Python.
 #include "geometry/error.hpp"
 #include "io/scenario/scenario.hpp"
+#include "owsim/flight_report.hpp"
 #include "owsim/frame.hpp"
 #include "owsim/simulation.hpp"
 #include "owsim/version.hpp"

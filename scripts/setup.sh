@@ -14,7 +14,12 @@ packages=(
   pybind11-dev python3-dev         # the Python module (python/)
   libopenmpi-dev openmpi-bin       # mpirun … owsim run / sweep (distributed/, libowsim_mpi.so)
   clang libclang-rt-14-dev llvm    # scripts/fuzz.sh (libFuzzer), symbolized sanitizer reports
+  zlib1g-dev                       # the report page's data (owsim view, io/report/)
+  chromium                         # the report page's browser test (tests/web/)
 )
+# Node.js and npm bundle the report page's script at build time (web/); Debian's packages unless
+# the machine already has a node and npm of its own.
+if ! command -v node >/dev/null || ! command -v npm >/dev/null; then packages+=(nodejs npm); fi
 
 missing=()
 for p in "${packages[@]}"; do
@@ -25,12 +30,20 @@ done
 
 if [ ${#missing[@]} -eq 0 ]; then
   echo "setup: all ${#packages[@]} packages already installed"
-  exit 0
+else
+  echo "setup: installing ${missing[*]}"
+  sudo_cmd=()
+  if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
+  export DEBIAN_FRONTEND=noninteractive
+  "${sudo_cmd[@]}" apt-get update -q
+  "${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
 fi
 
-echo "setup: installing ${missing[*]}"
-sudo_cmd=()
-if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
-export DEBIAN_FRONTEND=noninteractive
-"${sudo_cmd[@]}" apt-get update -q
-"${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
+# The report page's npm packages, at the versions web/package-lock.json pins (again only when
+# the lock file changed since the last install).
+web="$(cd "$(dirname "$0")/.." && pwd)/web"
+if [ ! -f "$web/node_modules/.package-lock.json" ] ||
+   [ "$web/package-lock.json" -nt "$web/node_modules/.package-lock.json" ]; then
+  echo "setup: npm ci in web/"
+  (cd "$web" && npm ci --no-audit --no-fund --loglevel=error)
+fi

@@ -1,5 +1,6 @@
 #include "sensor/fiber_layout.hpp"
 
+#include <algorithm>
 #include <limits>
 #include <string>
 
@@ -75,6 +76,17 @@ double fiber_alpha_deg(const ScanParams& p, int fiber) {
                           " needs " + std::to_string(p.fibers_per_line - 1));
   }
   return p.alpha_table_deg[static_cast<std::size_t>(fiber - 1)];
+}
+
+std::vector<int> fibers_top_down(const ScanParams& p) {
+  std::vector<int> fibers;
+  for (int fiber = 1; fiber <= p.fibers_per_line; ++fiber) {
+    if (!is_reference_fiber(p, fiber)) fibers.push_back(fiber);
+  }
+  std::stable_sort(fibers.begin(), fibers.end(), [&](int a, int b) {
+    return fiber_alpha_deg(p, a) > fiber_alpha_deg(p, b);
+  });
+  return fibers;
 }
 
 double sawtooth_deg(const ScanParams& p, int fiber) {

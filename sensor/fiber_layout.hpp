@@ -36,6 +36,11 @@ inline constexpr double kFiberEdgeAlphaDeg = 21.0;  // §2 table 1: |α| of fibe
 // reference fiber  (SENSOR-SPEC §2, table 1). Throws for a wrong-sized table or a bad fiber.
 [[nodiscard]] double fiber_alpha_deg(const ScanParams& p, int fiber);
 
+// The ranging fibers (the reference fiber left out) as the sensor sees them from top to bottom:
+// sorted by α, highest first, equal α in fiber order (for MilOWS α is up, SENSOR-SPEC §4 pinned
+// conventions: fiber 64 above 127). The rows of a range image (quick-look PNG, `owsim view`).
+[[nodiscard]] std::vector<int> fibers_top_down(const ScanParams& p);
+
 // Sawtooth fine correction β_FC: −sawtooth on odd fibers, +sawtooth on even  (SENSOR-SPEC §2,
 // eq 4.3)
 [[nodiscard]] double sawtooth_deg(const ScanParams& p, int fiber);

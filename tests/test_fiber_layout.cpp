@@ -155,5 +155,21 @@ TEST(FiberLayout, SawtoothAlternates) {
   EXPECT_EQ(sawtooth_deg(p, 1), 0.0);
 }
 
+// The range image's rows, top to bottom: MilOWS α is up, so the top row is the fiber at +21° (65)
+// and the bottom one at −21° (1); the two fibers at α = 0 (64 and 127) keep fiber order.
+TEST(FiberLayout, FibersTopDownFollowAlpha) {
+  const ScanParams scan;
+  const std::vector<int> fibers = fibers_top_down(scan);
+  ASSERT_EQ(fibers.size(), 127u);
+  EXPECT_EQ(fibers.front(), 65);
+  EXPECT_EQ(fibers.back(), 1);
+  for (std::size_t i = 1; i < fibers.size(); ++i) {
+    EXPECT_GE(fiber_alpha_deg(scan, fibers[i - 1]), fiber_alpha_deg(scan, fibers[i])) << i;
+  }
+  const auto at = [&](int fiber) { return std::find(fibers.begin(), fibers.end(), fiber); };
+  EXPECT_LT(at(64), at(127));
+  EXPECT_EQ(at(128), fibers.end());  // the reference fiber has no row
+}
+
 }  // namespace
 }  // namespace owsim

@@ -61,4 +61,27 @@ std::string csv_cell(std::string_view text) {
   return cell;
 }
 
+void split_csv_cells(std::string_view line, std::vector<std::string_view>& cells) {
+  cells.clear();
+  std::size_t start = 0;
+  for (;;) {
+    std::size_t end = start;
+    if (end < line.size() && line[end] == '"') {
+      for (++end; end < line.size(); ++end) {
+        if (line[end] != '"') continue;
+        if (end + 1 < line.size() && line[end + 1] == '"') {
+          ++end;
+        } else {
+          ++end;
+          break;
+        }
+      }
+    }
+    const std::size_t comma = line.find(',', end);
+    cells.push_back(line.substr(start, comma == std::string_view::npos ? comma : comma - start));
+    if (comma == std::string_view::npos) return;
+    start = comma + 1;
+  }
+}
+
 }  // namespace owsim

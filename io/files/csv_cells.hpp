@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace owsim {
 
@@ -17,5 +18,8 @@ void append_csv_integer(std::string& out, std::int64_t value);
 // The cell for `text`: unchanged, or in double quotes with quotes doubled if it holds a comma,
 // a double quote, CR or LF (RFC 4180).
 [[nodiscard]] std::string csv_cell(std::string_view text);
+// Splits one line (no line break) into `cells` at the commas outside double quotes; a quoted cell
+// is returned with its quotes, as written. Reading owsim's own files back (`owsim view`).
+void split_csv_cells(std::string_view line, std::vector<std::string_view>& cells);
 
 }  // namespace owsim

@@ -67,15 +67,9 @@ const Eigen::AlignedBox2d& checked(const Eigen::AlignedBox2d& region) {
   return region;
 }
 
-// Row of each fiber: the fibers sorted by α, highest first, equal α in fiber order.
+// Row of each fiber (fibers_top_down); −1 for the reference fiber.
 std::vector<int> rows_by_alpha(const ScanParams& scan) {
-  std::vector<int> fibers;
-  for (int fiber = 1; fiber <= scan.fibers_per_line; ++fiber) {
-    if (!is_reference_fiber(scan, fiber)) fibers.push_back(fiber);
-  }
-  std::stable_sort(fibers.begin(), fibers.end(), [&](int a, int b) {
-    return fiber_alpha_deg(scan, a) > fiber_alpha_deg(scan, b);
-  });
+  const std::vector<int> fibers = fibers_top_down(scan);
   std::vector<int> row_of_fiber(static_cast<std::size_t>(scan.fibers_per_line) + 1, -1);
   for (std::size_t row = 0; row < fibers.size(); ++row) {
     row_of_fiber[static_cast<std::size_t>(fibers[row])] = static_cast<int>(row);

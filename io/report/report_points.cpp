@@ -1,0 +1,215 @@
+#include "io/report/report_points.hpp"
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <optional>
+#include <string_view>
+
+#include "geometry/error.hpp"
+#include "geometry/scene.hpp"
+#include "io/files/csv_cells.hpp"
+
+namespace owsim {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// Columns of points.csv the page uses, by their INTERFACE.md names.
+enum Column { kFrame, kLine, kFiber, kReturn, kTime, kRange, kE, kN, kU, kClass, kColumnCount };
+constexpr std::array<std::string_view, kColumnCount> kColumnNames = {
+    "frame", "line", "fiber", "return", "time_s", "range_m", "e_m", "n_m", "u_m", "class"};
+
+class CsvLineError {
+ public:
+  CsvLineError(const std::filesystem::path& path, std::uint64_t line)
+      : where_(path.string() + ":" + std::to_string(line)) {}
+  [[noreturn]] void raise(std::string_view problem) const { throw input_error(where_, problem); }
+
+ private:
+  std::string where_;
+};
+
+double number_cell(std::string_view cell, Column column, const CsvLineError& at) {
+  double value = 0;
+  const auto [end, error] = std::from_chars(cell.data(), cell.data() + cell.size(), value);
+  if (error != std::errc() || end != cell.data() + cell.size()) {
+    at.raise(std::string(kColumnNames[column]) + ": '" + std::string(cell) + "' is not a number");
+  }
+  return value;
+}
+
+std::uint8_t surface_cell(std::string_view cell, const CsvLineError& at) {
+  if (cell == "unknown" || cell.empty()) return kUnknownSurface;
+  const std::optional<SurfaceClass> surface = surface_class_from_string(cell);
+  if (!surface) at.raise("class: '" + std::string(cell) + "' is not a class");
+  return static_cast<std::uint8_t>(*surface);
+}
+
+class PointsCsvParser {
+ public:
+  PointsCsvParser(std::filesystem::path path, ReportPoints& out)
+      : path_(std::move(path)), out_(out) {}
+
+  void line(std::string_view text) {
+    ++line_number_;
+    if (!text.empty() && text.back() == '\r') text.remove_suffix(1);
+    if (line_number_ == 1) return header(text);
+    if (text.empty()) return;
+    const CsvLineError at(path_, line_number_);
+    split_csv_cells(text, cells_);
+    if (cells_.size() != header_cells_) {
+      at.raise(std::to_string(cells_.size()) + " cells, the header has " +
+               std::to_string(header_cells_));
+    }
+    const auto cell = [&](Column c) { return cells_[static_cast<std::size_t>(index_[c])]; };
+    const auto number = [&](Column c) { return index_[c] < 0 ? kNaN : number_cell(cell(c), c, at); };
+    out_.e_m.push_back(static_cast<float>(number(kE)));
+    out_.n_m.push_back(static_cast<float>(number(kN)));
+    out_.u_m.push_back(static_cast<float>(number(kU)));
+    out_.range_m.push_back(static_cast<float>(number(kRange)));
+    out_.surface.push_back(index_[kClass] < 0 ? kUnknownSurface : surface_cell(cell(kClass), at));
+    if (!out_.pulses_known) return;
+    const double frame = number(kFrame);
+    if (!(frame >= 0 && frame < 2e9)) at.raise("frame: outside 0..2e9");
+    out_.frame.push_back(static_cast<std::int32_t>(frame));
+    out_.line.push_back(static_cast<std::int16_t>(std::clamp(number(kLine), -1.0, 32767.0)));
+    out_.fiber.push_back(static_cast<std::int16_t>(std::clamp(number(kFiber), -1.0, 32767.0)));
+    out_.return_number.push_back(
+        static_cast<std::uint8_t>(std::clamp(number(kReturn), 0.0, 255.0)));
+    const double time_s = number(kTime);
+    auto& times = out_.frame_first_time_s;
+    const auto f = static_cast<std::size_t>(frame);
+    if (times.size() <= f) times.resize(f + 1, kNaN);
+    if (std::isfinite(time_s) && !(times[f] <= time_s)) times[f] = time_s;
+  }
+
+ private:
+  void header(std::string_view text) {
+    std::vector<std::string_view> names;
+    split_csv_cells(text, names);
+    header_cells_ = names.size();
+    for (std::size_t c = 0; c < kColumnCount; ++c) {
+      for (std::size_t i = 0; i < names.size(); ++i) {
+        if (names[i] == kColumnNames[c]) index_[c] = static_cast<int>(i);
+      }
+    }
+    for (const Column required : {kE, kN, kU}) {
+      if (index_[required] < 0) {
+        throw input_error(path_.string() + ":1",
+                          "no column " + std::string(kColumnNames[required]) +
+                              " (points.csv of owsim run or owsim decode has e_m, n_m, u_m)");
+      }
+    }
+    out_.pulses_known = index_[kFrame] >= 0 && index_[kLine] >= 0 && index_[kFiber] >= 0 &&
+                        index_[kReturn] >= 0;
+  }
+
+  std::filesystem::path path_;
+  ReportPoints& out_;
+  std::uint64_t line_number_ = 0;
+  std::size_t header_cells_ = 0;
+  std::array<int, kColumnCount> index_ = [] {
+    std::array<int, kColumnCount> none{};
+    none.fill(-1);
+    return none;
+  }();
+  std::vector<std::string_view> cells_;
+};
+
+std::ifstream open_input(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw file_error(path.string(), "cannot open for reading");
+  return in;
+}
+
+}  // namespace
+
+ReportPoints read_report_points_csv(const std::filesystem::path& path) {
+  ReportPoints points;
+  points.source = "points.csv";
+  PointsCsvParser parser(path, points);
+  std::ifstream in = open_input(path);
+  std::string buffer;
+  std::string carry;
+  constexpr std::size_t kChunk = 8u << 20;
+  std::vector<char> chunk(kChunk);
+  while (in) {
+    in.read(chunk.data(), static_cast<std::streamsize>(kChunk));
+    const auto got = static_cast<std::size_t>(in.gcount());
+    if (got == 0) break;
+    carry.append(chunk.data(), got);
+    std::string_view rest(carry);
+    for (std::size_t newline; (newline = rest.find('\n')) != std::string_view::npos;) {
+      parser.line(rest.substr(0, newline));
+      rest.remove_prefix(newline + 1);
+    }
+    carry.erase(0, carry.size() - rest.size());
+  }
+  if (in.bad()) throw file_error(path.string(), "read error");
+  if (!carry.empty()) parser.line(carry);
+  return points;
+}
+
+ReportPoints read_report_points_ply(const std::filesystem::path& path) {
+  ReportPoints points;
+  points.source = "points.ply";
+  std::ifstream in = open_input(path);
+  const auto bad = [&](std::string_view problem) { return input_error(path.string(), problem); };
+  std::string header, line;
+  std::uint64_t vertices = 0;
+  bool have_count = false;
+  while (std::getline(in, line)) {
+    header += line + "\n";
+    if (line.rfind("element vertex ", 0) == 0) {
+      const std::string_view count = std::string_view(line).substr(15);
+      const auto [end, error] = std::from_chars(count.data(), count.data() + count.size(), vertices);
+      have_count = error == std::errc() && end == count.data() + count.size();
+    }
+    if (line == "end_header") break;
+    if (header.size() > 65536) break;
+  }
+  constexpr std::string_view kLayout =
+      "property double x\nproperty double y\nproperty double z\nproperty float intensity\n"
+      "property uchar class\nend_header\n";
+  if (header.rfind("ply\nformat binary_little_endian 1.0\n", 0) != 0 || !have_count ||
+      header.size() < kLayout.size() ||
+      header.compare(header.size() - kLayout.size(), kLayout.size(), kLayout) != 0) {
+    throw bad("not the PLY layout owsim writes (binary little-endian double x y z, float "
+              "intensity, uchar class)");
+  }
+  constexpr std::size_t kVertexBytes = 3 * 8 + 4 + 1;
+  const std::uintmax_t expected = header.size() + vertices * kVertexBytes;
+  std::error_code error;
+  if (std::filesystem::file_size(path, error) != expected || error) {
+    throw bad("holds " + std::to_string(std::filesystem::file_size(path, error)) +
+              " bytes, its header says " + std::to_string(vertices) + " vertices (" +
+              std::to_string(expected) + " bytes)");
+  }
+  points.e_m.reserve(vertices);
+  std::vector<char> block(kVertexBytes * 65536);
+  for (std::uint64_t done = 0; done < vertices;) {
+    const std::uint64_t n = std::min<std::uint64_t>(65536, vertices - done);
+    in.read(block.data(), static_cast<std::streamsize>(n * kVertexBytes));
+    if (!in) throw bad("read error");
+    for (std::uint64_t i = 0; i < n; ++i) {
+      const char* v = block.data() + i * kVertexBytes;
+      std::array<double, 3> xyz{};
+      std::memcpy(xyz.data(), v, sizeof xyz);
+      points.e_m.push_back(static_cast<float>(xyz[0]));
+      points.n_m.push_back(static_cast<float>(xyz[1]));
+      points.u_m.push_back(static_cast<float>(xyz[2]));
+      points.range_m.push_back(static_cast<float>(kNaN));
+      const auto code = static_cast<std::uint8_t>(v[28]);
+      points.surface.push_back(code < kSurfaceClassCount ? code : kUnknownSurface);
+    }
+    done += n;
+  }
+  return points;
+}
+
+}  // namespace owsim

@@ -1,0 +1,48 @@
+#pragma once
+// The returns of a flight folder read back for `owsim view`: from points.csv (every column the
+// page uses: position, range, class, and the frame, line, fiber and return that place a return in
+// its frame's range image) or, without it, from points.ply (position and class only). Held as
+// plain arrays, 24 bytes a return, so ten million returns take 240 MB while the page is built.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace owsim {
+
+inline constexpr std::uint8_t kUnknownSurface = 255;  // surface of a return of unknown class
+
+// A range as the page carries it: decimetres, 1..65535 (6.5 km); 0 for an unknown range.
+[[nodiscard]] inline std::uint16_t range_decimetres(float range_m) {
+  if (!std::isfinite(range_m)) return 0;
+  return static_cast<std::uint16_t>(std::clamp(std::round(range_m * 10.0), 1.0, 65535.0));
+}
+
+struct ReportPoints {
+  std::string source;                  // "points.csv" or "points.ply"
+  std::vector<float> e_m, n_m, u_m;    // local East-North-Up from the scenario origin
+  std::vector<float> range_m;          // NaN: not in the file (PLY)
+  std::vector<std::uint8_t> surface;   // SurfaceClass code, kUnknownSurface if unknown
+  // Where each return sits in its frame (points.csv only; empty for PLY).
+  std::vector<std::int32_t> frame;
+  std::vector<std::int16_t> line, fiber;
+  std::vector<std::uint8_t> return_number;
+  std::vector<double> frame_first_time_s;  // by frame: the earliest return's pulse time; NaN none
+
+  bool pulses_known = false;  // frame, line, fiber and return are filled
+
+  [[nodiscard]] std::size_t size() const { return e_m.size(); }
+};
+
+// points.csv of INTERFACE.md, columns found by their header names (e_m, n_m, u_m required; frame,
+// line, fiber, return, time_s, range_m and class used when present). Throws owsim::Error naming
+// file:line and the column for a missing column or a cell that is not a number / class.
+[[nodiscard]] ReportPoints read_report_points_csv(const std::filesystem::path& path);
+
+// points.ply as owsim writes it (binary little-endian: double x y z, float intensity, uchar
+// class). Throws owsim::Error naming the file for any other layout or a short file.
+[[nodiscard]] ReportPoints read_report_points_ply(const std::filesystem::path& path);
+
+}  // namespace owsim

@@ -1,0 +1,276 @@
+#include "owsim/flight_report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "geometry/error.hpp"
+#include "io/report/flight_folder.hpp"
+#include "io/report/report_cloud.hpp"
+#include "io/report/report_frames.hpp"
+#include "io/report/report_page.hpp"
+#include "io/report/report_points.hpp"
+#include "io/report/report_scene.hpp"
+#include "io/report/report_trajectory.hpp"
+#include "io/scenario/scenario_loader.hpp"
+#include "io/scenario/scene_builder.hpp"
+#include "owsim/version.hpp"
+#include "sensor/range_counter.hpp"
+
+namespace owsim {
+namespace {
+
+using nlohmann::json;
+
+constexpr std::size_t kMaxCylinders = 20'000;
+constexpr std::size_t kMaxTrajectoryRows = 20'000;
+
+std::string thousands(std::uint64_t n) {
+  std::string digits = std::to_string(n), out;
+  for (std::size_t i = 0; i < digits.size(); ++i) {
+    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
+    out += digits[i];
+  }
+  return out;
+}
+
+json read_summary(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) throw file_error(path.string(), "cannot open for reading");
+  try {
+    json summary = json::parse(in);
+    if (!summary.is_object()) throw input_error(path.string(), "not a JSON object");
+    return summary;
+  } catch (const json::exception& e) {
+    throw input_error(path.string(), std::string("not JSON: ") + e.what());
+  }
+}
+
+// The ground-truth table: objects seen first (by first-seen time), then the unseen; at most max.
+json ground_truth(json& summary, std::size_t max_objects, std::size_t& total) {
+  json objects = summary.contains("objects") && summary["objects"].is_array() ? summary["objects"]
+                                                                              : json::array();
+  summary.erase("objects");
+  total = objects.size();
+  std::vector<json> rows(objects.begin(), objects.end());
+  const auto first_seen = [](const json& o) {
+    const auto it = o.find("first_seen_s");
+    return it != o.end() && it->is_number() ? it->get<double>() : INFINITY;
+  };
+  std::stable_sort(rows.begin(), rows.end(),
+                   [&](const json& a, const json& b) { return first_seen(a) < first_seen(b); });
+  if (rows.size() > max_objects) rows.resize(max_objects);
+  return rows;
+}
+
+json trajectory_json(const ReportTrajectory& trajectory) {
+  json columns = {{"time_s", json::array()}, {"e_m", json::array()}, {"n_m", json::array()},
+                  {"u_m", json::array()}};
+  const std::size_t n = trajectory.rows.size();
+  const std::size_t keep = std::min(n, kMaxTrajectoryRows);
+  for (std::size_t i = 0; i < keep; ++i) {
+    const auto& row = trajectory.rows[keep == 1 ? 0 : i * (n - 1) / (keep - 1)];
+    columns["time_s"].push_back(row[0]);
+    columns["e_m"].push_back(std::round(row[1] * 100) / 100);
+    columns["n_m"].push_back(std::round(row[2] * 100) / 100);
+    columns["u_m"].push_back(std::round(row[3] * 100) / 100);
+  }
+  return columns;
+}
+
+json frames_json(const ReportFrames& frames, const RangeImageLayout& layout,
+                 const std::optional<ReportTrajectory>& trajectory, const ReportPoints& points) {
+  json time_s = json::array(), pose = json::array();
+  for (const std::int64_t frame : frames.frames) {
+    const auto f = static_cast<std::size_t>(frame);
+    if (trajectory && f < trajectory->rows.size()) {
+      const auto& row = trajectory->rows[f];
+      time_s.push_back(row[0]);
+      pose.push_back({row[1], row[2], row[3], row[4], row[5], row[6]});
+      continue;
+    }
+    const double t = f < points.frame_first_time_s.size() ? points.frame_first_time_s[f] : NAN;
+    time_s.push_back(std::isfinite(t) ? json(t) : json(nullptr));
+    pose.push_back(nullptr);
+  }
+  json alpha = json::array();
+  for (const double a : layout.alpha_deg) alpha.push_back(std::round(a * 1e4) / 1e4);
+  return {{"total", frames.frames_total},
+          {"shown", frames.frames},
+          {"time_s", std::move(time_s)},
+          {"pose", std::move(pose)},
+          {"rows", layout.fibers.size()},
+          {"lines", layout.lines},
+          {"row_fiber", layout.fibers},
+          {"row_alpha_deg", std::move(alpha)},
+          {"beta_first_deg", layout.beta_first_deg},
+          {"beta_last_deg", layout.beta_last_deg}};
+}
+
+json cloud_json(const ReportCloud& cloud, const std::string& source) {
+  json by_class = json::object();
+  for (std::size_t slot = 0; slot < kCloudClassSlots; ++slot) {
+    if (cloud.total_by_class[slot] == 0) continue;
+    const std::string name = slot < kSurfaceClassCount
+                                 ? std::string(to_string(static_cast<SurfaceClass>(slot)))
+                                 : std::string("unknown");
+    by_class[name] = {{"total", cloud.total_by_class[slot]}, {"shown", cloud.shown_by_class[slot]}};
+  }
+  return {{"source", source},          {"total", cloud.total},     {"shown", cloud.shown()},
+          {"box_min", cloud.box_min},  {"box_max", cloud.box_max}, {"by_class", by_class}};
+}
+
+std::vector<std::uint8_t> cloud_bytes(const ReportCloud& cloud) {
+  std::vector<std::uint8_t> bytes;
+  bytes.reserve(cloud.shown() * 9);
+  const auto put16 = [&](std::uint16_t v) {
+    bytes.push_back(static_cast<std::uint8_t>(v & 0xFF));
+    bytes.push_back(static_cast<std::uint8_t>(v >> 8));
+  };
+  for (const std::uint16_t v : cloud.xyz) put16(v);
+  for (const std::uint16_t v : cloud.range_dm) put16(v);
+  bytes.insert(bytes.end(), cloud.surface.begin(), cloud.surface.end());
+  return bytes;
+}
+
+std::string thinning_note(const ReportCloud& cloud) {
+  std::string note = "The 3D view shows " + thousands(cloud.shown()) + " of " +
+                     thousands(cloud.total) + " returns:";
+  for (std::size_t slot = 0; slot < kCloudClassSlots; ++slot) {
+    const std::uint64_t total = cloud.total_by_class[slot], shown = cloud.shown_by_class[slot];
+    if (total == 0) continue;
+    note += slot == 0 ? " " : " ";
+    note += slot < kSurfaceClassCount ? std::string(to_string(static_cast<SurfaceClass>(slot)))
+                                      : std::string("unknown");
+    note += shown == total ? " all;"
+                           : " 1 in " + std::to_string((total + shown - 1) / std::max<std::uint64_t>(shown, 1)) + ";";
+  }
+  note.back() = '.';
+  return note;
+}
+
+}  // namespace
+
+FlightReport write_flight_report(const std::filesystem::path& folder_path,
+                                 const FlightReportOptions& options) {
+  if (options.max_frames < 1) throw input_error("--max-frames", "must be at least 1");
+  if (options.max_points < 1) throw input_error("--max-points", "must be at least 1");
+  const FlightFolder folder = find_flight_folder(folder_path);
+  FlightReport report;
+  report.file = options.out.empty() ? folder.directory / "report.html" : options.out;
+  std::vector<std::string>& notes = report.notes;
+
+  json meta = json::object();
+  meta["generator"] = std::string("owsim ") + version_string;
+  meta["folder"] = std::filesystem::absolute(folder.directory).lexically_normal().string();
+  std::string title = folder.directory.filename().string();
+
+  json summary = nullptr;
+  std::size_t objects_total = 0;
+  meta["objects"] = json::array();
+  if (folder.summary_json) {
+    summary = read_summary(*folder.summary_json);
+    meta["objects"] = ground_truth(summary, options.max_objects, objects_total);
+    if (objects_total > options.max_objects) {
+      notes.push_back("The ground-truth table lists the first " + thousands(options.max_objects) +
+                      " of " + thousands(objects_total) + " objects by first-seen time.");
+    }
+    if (summary.contains("scenario") && summary["scenario"].is_string()) {
+      title = summary["scenario"].get<std::string>();
+    }
+  } else {
+    notes.push_back("No summary.json in this folder (a decoded recording?): no run summary and "
+                    "no ground truth.");
+  }
+  meta["summary"] = summary;
+  meta["objects_total"] = objects_total;
+
+  ScanParams scan;
+  if (folder.hellas_words) scan.model = SensorModel::hellas;
+  meta["scene"] = nullptr;
+  if (options.scenario) {
+    const Scenario scenario = load_scenario(*options.scenario);
+    scan = scenario.scan;
+    const Scene scene = build_scene(scenario);
+    meta["scene"] = report_scene_json(scene, kMaxCylinders);
+    meta["scenario_file"] = options.scenario->string();
+    if (scene.cylinders.size() > kMaxCylinders) {
+      notes.push_back("Poles and trees: " + thousands(kMaxCylinders) + " of " +
+                      thousands(scene.cylinders.size()) + " drawn, evenly chosen.");
+    }
+  } else {
+    notes.push_back("Scene objects (wires, poles, trees, meshes) are drawn when owsim view is "
+                    "given the flight's scenario: --scenario FILE.");
+  }
+  meta["sensor"] = {{"model", scan.model == SensorModel::hellas ? "HELLAS" : "MilOWS"},
+                    {"timeout_range_m", timeout_range_m(scan.counter)}};
+
+  std::optional<ReportTrajectory> trajectory;
+  meta["trajectory"] = nullptr;
+  if (folder.trajectory_csv) {
+    trajectory = read_report_trajectory(*folder.trajectory_csv);
+    meta["trajectory"] = trajectory_json(*trajectory);
+  } else {
+    notes.push_back("No trajectory.csv in this folder: no flight path and no poses.");
+  }
+
+  ReportPoints points;
+  if (folder.points_csv) {
+    points = read_report_points_csv(*folder.points_csv);
+  } else if (folder.points_ply) {
+    points = read_report_points_ply(*folder.points_ply);
+  } else if (folder.points_las) {
+    notes.push_back("Only points.las here: the page reads points.csv or points.ply, so it shows "
+                    "no returns (write them with --outputs csv or ply).");
+  } else {
+    notes.push_back("No point file in this folder (the run wrote words only?): no returns to "
+                    "show. owsim decode, or a run with --outputs points, writes them.");
+  }
+  if ((folder.points_csv || folder.points_ply) && points.size() == 0) {
+    notes.push_back("The flight has no returns: the sensor saw nothing.");
+  }
+
+  std::string frames_blob;
+  meta["frames"] = nullptr;
+  if (points.pulses_known) {
+    const RangeImageLayout layout = range_image_layout(scan);
+    const std::int64_t hint = summary.is_object() && summary.contains("frames") &&
+                                      summary["frames"].is_number_integer()
+                                  ? summary["frames"].get<std::int64_t>()
+                                  : 0;
+    const ReportFrames frames = report_frames(points, layout, hint, options.max_frames);
+    report.frames_total = frames.frames_total;
+    report.frames_shown = static_cast<std::int64_t>(frames.frames.size());
+    if (report.frames_shown < report.frames_total) {
+      notes.push_back("The frame player holds " + thousands(report.frames_shown) + " of " +
+                      thousands(report.frames_total) + " frames, evenly spread (--max-frames).");
+    }
+    if (frames.returns_outside > 0) {
+      notes.push_back(thousands(frames.returns_outside) +
+                      " returns name a line or fiber outside the sensor's frame and are left out "
+                      "of the range images.");
+    }
+    meta["frames"] = frames_json(frames, layout, trajectory, points);
+    frames_blob = deflate_base64(frames.planes);
+  } else if (points.size() > 0) {
+    notes.push_back("The frame player needs points.csv (frame, line and fiber of each return); "
+                    "this folder has " + points.source + " only.");
+  }
+
+  const ReportCloud cloud = report_cloud(points, options.max_points);
+  report.points_total = cloud.total;
+  report.points_shown = cloud.shown();
+  if (cloud.shown() < cloud.total) notes.push_back(thinning_note(cloud));
+  meta["cloud"] = cloud_json(cloud, points.source);
+  const std::string cloud_blob = deflate_base64(cloud_bytes(cloud));
+
+  meta["title"] = title;
+  meta["notes"] = notes;
+  report.bytes = write_report_page(report.file, "owsim — " + title, meta.dump(), frames_blob,
+                                   cloud_blob);
+  return report;
+}
+
+}  // namespace owsim

@@ -1,0 +1,258 @@
+// `owsim view`'s page data (io/report/, owsim/flight_report.hpp): range-image cells placed as the
+// quick-look lays them out, marks by class priority, evenly spread frames; the 3D cloud's class
+// budgets and quantisation bound; the readers' errors; and a whole page read back — its meta
+// JSON and both blobs inflated with zlib independently of the writer.
+#include <gtest/gtest.h>
+#include <zlib.h>
+
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "cli_runner.hpp"
+#include "geometry/error.hpp"
+#include "io/report/flight_folder.hpp"
+#include "io/report/report_cloud.hpp"
+#include "io/report/report_frames.hpp"
+#include "io/report/report_page.hpp"
+#include "io/report/report_points.hpp"
+#include "owsim/flight_report.hpp"
+#include "sensor/fiber_layout.hpp"
+
+namespace owsim {
+namespace {
+
+using test::TempDir;
+
+void add_return(ReportPoints& p, int frame, int line, int fiber, int ret, float range,
+                SurfaceClass surface, float e = 0, float n = 0, float u = 0) {
+  p.e_m.push_back(e);
+  p.n_m.push_back(n);
+  p.u_m.push_back(u);
+  p.range_m.push_back(range);
+  p.surface.push_back(static_cast<std::uint8_t>(surface));
+  p.frame.push_back(frame);
+  p.line.push_back(static_cast<std::int16_t>(line));
+  p.fiber.push_back(static_cast<std::int16_t>(fiber));
+  p.return_number.push_back(static_cast<std::uint8_t>(ret));
+  p.pulses_known = true;
+}
+
+std::uint16_t cell_range(const ReportFrames& f, std::size_t slot, std::size_t cells, std::size_t c) {
+  const std::uint8_t* plane = f.planes.data() + slot * 3 * cells;
+  return static_cast<std::uint16_t>(plane[2 * c] | (plane[2 * c + 1] << 8));
+}
+std::uint8_t cell_mark(const ReportFrames& f, std::size_t slot, std::size_t cells, std::size_t c) {
+  return f.planes[slot * 3 * cells + 2 * cells + c];
+}
+
+TEST(ReportFrames, CellsFollowTheQuicklookLayout) {
+  const ScanParams scan;
+  const RangeImageLayout layout = range_image_layout(scan);
+  ASSERT_EQ(layout.fibers.size(), 127u);
+  EXPECT_EQ(layout.lines, 159);
+  EXPECT_DOUBLE_EQ(layout.beta_first_deg, -18.0);
+  EXPECT_DOUBLE_EQ(layout.alpha_deg.front(), fiber_alpha_deg(scan, layout.fibers.front()));
+  const std::size_t cells = 127 * 159;
+  ReportPoints p;
+  // Frame 0 sweeps up: line 3 is column 3. Fiber 65 is the top row (highest α).
+  add_return(p, 0, 3, 65, 1, 123.44f, SurfaceClass::tree);
+  add_return(p, 0, 3, 65, 2, 300.0f, SurfaceClass::wire);  // behind the tree: still marked wire
+  // Frame 1 sweeps down: line 3 is column 158 − 3; fiber 1 is the bottom row.
+  add_return(p, 1, 3, 1, 1, 50.0f, SurfaceClass::ground);
+  add_return(p, 1, 4, 1, 1, 60.0f, SurfaceClass::fog);
+  add_return(p, 1, 4, 1, 2, 61.0f, SurfaceClass::pole);
+  add_return(p, 1, 5, 128, 1, 61.0f, SurfaceClass::pole);  // the reference fiber: no row
+  const ReportFrames f = report_frames(p, layout, 0, 10);
+  ASSERT_EQ(f.frames_total, 2);
+  ASSERT_EQ(f.frames, (std::vector<std::int64_t>{0, 1}));
+  EXPECT_EQ(f.returns_outside, 1u);
+  EXPECT_EQ(cell_range(f, 0, cells, 3), 1234);  // decimetres of the first return
+  EXPECT_EQ(cell_mark(f, 0, cells, 3), 1 + static_cast<int>(SurfaceClass::wire));
+  const std::size_t bottom = 126 * 159;
+  EXPECT_EQ(cell_range(f, 1, cells, bottom + 155), 500);
+  EXPECT_EQ(cell_mark(f, 1, cells, bottom + 155), 0);  // ground is not marked
+  EXPECT_EQ(cell_mark(f, 1, cells, bottom + 154), 1 + static_cast<int>(SurfaceClass::pole));
+  EXPECT_EQ(cell_range(f, 1, cells, 0), 0);  // no return
+}
+
+TEST(ReportFrames, LongFlightsShowEvenlySpreadFrames) {
+  ReportPoints p;
+  add_return(p, 9, 0, 1, 1, 10.0f, SurfaceClass::ground);
+  const ReportFrames f = report_frames(p, range_image_layout(ScanParams{}), 0, 4);
+  EXPECT_EQ(f.frames, (std::vector<std::int64_t>{0, 2, 5, 7}));
+  EXPECT_EQ(report_frames(p, range_image_layout(ScanParams{}), 100, 4).frames_total, 100);
+  EXPECT_THROW((void)report_frames(p, range_image_layout(ScanParams{}), 0, 0), Error);
+}
+
+TEST(ReportCloud, RareClassesStayWholeAndPositionsKeepTheirBound) {
+  ReportPoints p;
+  std::mt19937 random(7);
+  std::uniform_real_distribution<float> x(-1500.0f, 2500.0f), z(300.0f, 420.0f);
+  for (int i = 0; i < 5000; ++i) add_return(p, 0, 0, 1, 1, 500.0f, SurfaceClass::ground, x(random), x(random), z(random));
+  for (int i = 0; i < 40; ++i) add_return(p, 0, 0, 1, 1, 250.0f, SurfaceClass::wire, x(random), x(random), z(random));
+  const ReportCloud all = report_cloud(p, 1'000'000);
+  ASSERT_EQ(all.shown(), 5040u);
+  for (std::size_t i = 0; i < all.shown(); ++i) {
+    const float* axes[3] = {&p.e_m[i], &p.n_m[i], &p.u_m[i]};
+    for (int a = 0; a < 3; ++a) {
+      const double step = (all.box_max[a] - all.box_min[a]) / 65535.0;
+      const double back = all.box_min[a] + all.xyz[3 * i + a] * step;
+      EXPECT_LE(std::abs(back - *axes[a]), step / 2 + 1e-6 * std::abs(*axes[a])) << i << " " << a;
+    }
+  }
+  const ReportCloud thin = report_cloud(p, 1040);
+  EXPECT_EQ(thin.total, 5040u);
+  EXPECT_EQ(thin.shown_by_class[static_cast<std::size_t>(SurfaceClass::wire)], 40u);
+  EXPECT_EQ(thin.shown_by_class[static_cast<std::size_t>(SurfaceClass::ground)], 1000u);
+  EXPECT_EQ(thin.shown(), 1040u);
+  EXPECT_EQ(thin.range_dm.front(), 5000);
+}
+
+TEST(ReportPointsCsv, ReadsColumnsByNameAndNamesBadCells) {
+  const TempDir dir;
+  const auto write = [&](const std::string& text) {
+    std::ofstream(dir / "points.csv") << text;
+    return dir / "points.csv";
+  };
+  const std::string header = "frame,pulse,line,fiber,return,time_s,range_m,counter,e_m,n_m,u_m,"
+                             "lat_deg,lon_deg,h_m,class,object,energy_rel,incidence_deg\n";
+  const ReportPoints p = read_report_points_csv(write(
+      header + "2,5,0,6,1,0.5,214.8,358,-1156.7,-117.6,-0.05,48.6,10.8,450.0,wire,\"a,b\",0.02,65\n"
+               "2,6,0,7,2,0.25,100.0,358,1,2,3,48.6,10.8,450.0,unknown,,,\n"));
+  ASSERT_EQ(p.size(), 2u);
+  EXPECT_TRUE(p.pulses_known);
+  EXPECT_FLOAT_EQ(p.e_m[0], -1156.7f);
+  EXPECT_FLOAT_EQ(p.range_m[0], 214.8f);
+  EXPECT_EQ(p.surface[0], static_cast<std::uint8_t>(SurfaceClass::wire));
+  EXPECT_EQ(p.surface[1], kUnknownSurface);
+  EXPECT_EQ(p.return_number[1], 2);
+  EXPECT_EQ(p.frame_first_time_s.size(), 3u);
+  EXPECT_DOUBLE_EQ(p.frame_first_time_s[2], 0.25);
+  const auto message = [&](const std::string& text) {
+    try {
+      (void)read_report_points_csv(write(text));
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message("frame,e_m,n_m\n"), (dir / "points.csv").string() + ":1: no column u_m "
+                                        "(points.csv of owsim run or owsim decode has e_m, n_m, u_m)");
+  EXPECT_EQ(message("e_m,n_m,u_m,range_m\n1,2,3,4\n1,2,3,x\n"),
+            (dir / "points.csv").string() + ":3: range_m: 'x' is not a number");
+  EXPECT_EQ(message("e_m,n_m,u_m,class\n1,2,3,cable\n"),
+            (dir / "points.csv").string() + ":2: class: 'cable' is not a class");
+}
+
+TEST(FlightFolder, RefusesAFolderThatIsNoOwsimOutput) {
+  const TempDir dir;
+  std::ofstream(dir / "notes.txt") << "hello";
+  try {
+    (void)find_flight_folder(dir.path());
+    FAIL() << "accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("not an owsim output folder"), std::string::npos);
+  }
+  EXPECT_THROW((void)find_flight_folder(dir / "missing"), FileError);
+}
+
+// Base64 and inflate written here from the RFCs with zlib's uncompress, not the writer's code.
+std::vector<std::uint8_t> unpack_blob(const std::string& text, std::size_t size) {
+  std::vector<std::uint8_t> packed;
+  std::uint32_t bits = 0;
+  int count = 0;
+  for (const char c : text) {
+    int v = -1;
+    if (c >= 'A' && c <= 'Z') v = c - 'A';
+    if (c >= 'a' && c <= 'z') v = c - 'a' + 26;
+    if (c >= '0' && c <= '9') v = c - '0' + 52;
+    if (c == '+') v = 62;
+    if (c == '/') v = 63;
+    if (v < 0) continue;
+    bits = (bits << 6) | static_cast<std::uint32_t>(v);
+    if ((count += 6) >= 8) {
+      count -= 8;
+      packed.push_back(static_cast<std::uint8_t>(bits >> count));
+    }
+  }
+  std::vector<std::uint8_t> out(size);
+  uLongf got = size;
+  EXPECT_EQ(uncompress(out.data(), &got, packed.data(), static_cast<uLong>(packed.size())), Z_OK);
+  EXPECT_EQ(got, size);
+  return out;
+}
+
+std::string element(const std::string& html, const std::string& id) {
+  const std::string open = "id=\"" + id + "\">";
+  const std::size_t start = html.find(open);
+  if (start == std::string::npos) return {};
+  const std::size_t from = start + open.size();
+  return html.substr(from, html.find("</script>", from) - from);
+}
+
+TEST(FlightReport, ThePageCarriesTheFolderAndSaysWhatItLeavesOut) {
+  const TempDir dir;
+  std::ofstream(dir / "summary.json")
+      << R"({"scenario": "tiny</script>", "frames": 3, "objects": [)"
+         R"({"id": "b", "first_seen_s": 2.0}, {"id": "never", "first_seen_s": null},)"
+         R"({"id": "a", "first_seen_s": 1.0}]})";
+  std::ofstream(dir / "trajectory.csv")
+      << "time_s,lat_deg,lon_deg,h_m,e_m,n_m,u_m,roll_deg,pitch_deg,heading_deg\n"
+         "0.0,48,10,400,1,2,100,0,0,90\n0.33,48,10,400,11,2,100,1,2,91\n";
+  std::ofstream(dir / "points.csv") << "frame,line,fiber,return,time_s,range_m,e_m,n_m,u_m,class\n"
+                                       "0,0,65,1,0.01,200.0,10,20,30,wire\n"
+                                       "1,2,1,1,0.34,300.0,40,50,60,ground\n";
+  FlightReportOptions options;
+  options.max_objects = 2;
+  const FlightReport report = write_flight_report(dir.path(), options);
+  EXPECT_EQ(report.file, dir / "report.html");
+  EXPECT_EQ(report.points_total, 2u);
+  EXPECT_EQ(report.frames_total, 3);
+  const std::string html = test::read_whole_file(report.file);
+  EXPECT_EQ(html.size(), report.bytes);
+  EXPECT_NE(html.find("<title>owsim — tiny&lt;/script&gt;</title>"), std::string::npos);
+  const nlohmann::json meta = nlohmann::json::parse(element(html, "owsim-meta"));
+  EXPECT_EQ(meta["title"], "tiny</script>");
+  ASSERT_EQ(meta["objects"].size(), 2u);
+  EXPECT_EQ(meta["objects"][0]["id"], "a");  // first seen first
+  EXPECT_EQ(meta["objects"][1]["id"], "b");
+  EXPECT_EQ(meta["objects_total"], 3);
+  EXPECT_EQ(meta["frames"]["shown"], (std::vector<int>{0, 1, 2}));
+  EXPECT_EQ(meta["frames"]["pose"][1][0], 11.0);
+  EXPECT_TRUE(meta["frames"]["pose"][2].is_null());  // no trajectory row: no pose
+  EXPECT_EQ(meta["cloud"]["by_class"]["wire"]["shown"], 1);
+  const std::string notes = meta["notes"].dump();
+  EXPECT_NE(notes.find("first 2 of 3 objects"), std::string::npos) << notes;
+  EXPECT_NE(notes.find("--scenario FILE"), std::string::npos) << notes;
+
+  const std::size_t cells = 127 * 159;
+  const std::vector<std::uint8_t> planes = unpack_blob(element(html, "owsim-frames"), 3 * 3 * cells);
+  EXPECT_EQ(planes[0] | (planes[1] << 8), 2000);  // frame 0, top row (fiber 65), column 0
+  EXPECT_EQ(planes[2 * cells], 1 + static_cast<int>(SurfaceClass::wire));
+  const std::vector<std::uint8_t> cloud = unpack_blob(element(html, "owsim-cloud"), 2 * 9);
+  // Point 1 is the box's far corner: 65535 on every axis; ranges 2000 and 3000 dm; classes.
+  EXPECT_EQ(cloud[6] | (cloud[7] << 8), 65535);
+  EXPECT_EQ(cloud[12] | (cloud[13] << 8), 2000);
+  EXPECT_EQ(cloud[16], static_cast<int>(SurfaceClass::wire));
+  EXPECT_EQ(cloud[17], static_cast<int>(SurfaceClass::ground));
+}
+
+TEST(FlightReport, BadFilesNameThemselvesAndLeaveNoPage) {
+  const TempDir dir;
+  std::ofstream(dir / "summary.json") << "{\"frames\": ";
+  try {
+    (void)write_flight_report(dir.path());
+    FAIL() << "accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()).rfind((dir / "summary.json").string() + ": not JSON", 0), 0u)
+        << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir / "report.html"));
+}
+
+}  // namespace
+}  // namespace owsim

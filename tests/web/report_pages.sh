@@ -1,0 +1,55 @@
+#!/usr/bin/env bash
+# `owsim view` end to end in a real browser (tests/web/report_page.mjs): the report of a run of
+# the corridor example, of a recording decoded without labels (as from real data: no summary, no
+# trajectory, no classes), of a words-only run (no points), and of a run thinned to a small
+# budget; and the refusal of a folder that is no owsim output. Outputs and screenshots stay in
+# BUILD/web-report and BUILD/web-screens (CI artifacts).
+#   tests/web/report_pages.sh BUILD_DIR
+set -euo pipefail
+build=$(cd "$1" && pwd)
+root=$(cd "$(dirname "$0")/../.." && pwd)
+owsim="$build/owsim"
+out="$build/web-report"
+shots="$build/web-screens"
+rm -rf "$out" "$shots"
+mkdir -p "$out" "$shots"
+cd "$root"
+page() { node "$root/tests/web/report_page.mjs" "$@"; }
+
+# 1. A simulated run: summary, ground truth, frames with wire marks, map, 3D with the scene.
+"$owsim" run examples/corridor.yaml --out "$out/corridor" --frames 90 --quiet
+"$owsim" view "$out/corridor" --scenario examples/corridor.yaml --quiet
+page "$out/corridor/report.html" "$shots/corridor" --expect-frames --expect-objects --expect-wires
+
+# 2. Its words decoded without labels, viewed without the scenario: what real data gives.
+"$owsim" decode "$out/corridor/flight.d64" --scenario examples/corridor.yaml --no-labels \
+  --outputs csv --out "$out/decoded" --quiet
+"$owsim" view "$out/decoded" --quiet
+page "$out/decoded/report.html" "$shots/decoded" --expect-frames \
+  --expect-note "No summary.json in this folder"
+
+# 3. Words only: no points to show, said in the page.
+"$owsim" run examples/single_span.yaml --out "$out/words_only" --outputs d64,summary,trajectory --quiet
+"$owsim" view "$out/words_only" --scenario examples/single_span.yaml --quiet
+page "$out/words_only/report.html" "$shots/words_only" --expect-objects --expect-empty \
+  --expect-note "No point file in this folder"
+
+# 4. A budget smaller than the flight: thinned, and the page says how.
+"$owsim" view "$out/corridor" --out "$out/thinned.html" --max-points 50000 --max-frames 7 --quiet
+page "$out/thinned.html" "$shots/thinned" --expect-frames --expect-objects \
+  --expect-note "The 3D view shows 50,000 of"
+
+# 5. Not an owsim folder: one line, non-zero, nothing written.
+mkdir -p "$out/not_owsim"
+echo "hello" > "$out/not_owsim/notes.txt"
+if "$owsim" view "$out/not_owsim" 2> "$out/not_owsim.err"; then
+  echo "FAIL: owsim view accepted a folder that is no owsim output" >&2
+  exit 1
+fi
+if [ "$(wc -l < "$out/not_owsim.err")" -ne 1 ] || ! grep -q "not an owsim output folder" "$out/not_owsim.err" ||
+   [ -e "$out/not_owsim/report.html" ]; then
+  echo "FAIL: the refusal should be one line and leave no page:" >&2
+  cat "$out/not_owsim.err" >&2
+  exit 1
+fi
+echo "report pages: all checks passed (screenshots in $shots)"
