@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "geometry/error.hpp"
+#include "owsim/flight_report.hpp"
 #include "owsim/owsim.h"
 #include "owsim/simulation.hpp"
 #include "owsim/version.hpp"
@@ -359,6 +360,36 @@ owsim_status owsim_simulation_run(const owsim_simulation* simulation,
     if (report != nullptr) {
       *report = owsim_run_report{done.frames,       done.first_frame,     done.pulses, done.wall_s,
                                  done.pulses_per_s, done.realtime_factor, done.threads};
+    }
+  });
+}
+
+owsim_view_options owsim_view_options_default(void) {
+  const owsim::FlightReportOptions defaults;
+  return owsim_view_options{sizeof(owsim_view_options), nullptr, nullptr, defaults.max_points,
+                            defaults.max_frames};
+}
+
+owsim_status owsim_view(const char* folder, const owsim_view_options* options,
+                        owsim_view_report* report) {
+  return guarded("owsim_view", [&] {
+    require(folder, "folder");
+    owsim::FlightReportOptions view;
+    if (options != nullptr) {
+      if (options->struct_size < sizeof(owsim_view_options)) {
+        throw ArgumentError{"options->struct_size is " + std::to_string(options->struct_size) +
+                            ", expected " + std::to_string(sizeof(owsim_view_options)) +
+                            " (start from owsim_view_options_default())"};
+      }
+      if (options->out_file != nullptr) view.out = options->out_file;
+      if (options->scenario_path != nullptr) view.scenario = options->scenario_path;
+      view.max_points = options->max_points;
+      view.max_frames = options->max_frames;
+    }
+    const owsim::FlightReport done = owsim::write_flight_report(folder, view);
+    if (report != nullptr) {
+      *report = owsim_view_report{done.bytes, done.points_total, done.points_shown,
+                                  done.frames_total, done.frames_shown};
     }
   });
 }

@@ -54,4 +54,17 @@ Eigen::Matrix3d LocalFrame::enu_rotation_at(const Eigen::Vector3d& position_enu_
   return m;
 }
 
+Geodetic origin_of_frame(const Geodetic& point, const Eigen::Vector3d& enu_m) {
+  validate_geodetic(point, "origin_of_frame");
+  if (!enu_m.allFinite()) throw Error("origin_of_frame: the local coordinates are not finite");
+  Geodetic origin = point;
+  for (int step = 0; step < 8; ++step) {
+    const LocalFrame frame(origin);
+    const Eigen::Vector3d residual = frame.enu_from_geodetic(point) - enu_m;
+    origin = frame.geodetic_from_enu(residual);
+    if (residual.norm() < 1e-6) break;
+  }
+  return origin;
+}
+
 }  // namespace owsim

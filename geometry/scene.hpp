@@ -28,6 +28,10 @@ inline constexpr std::array<SurfaceClass, kSurfaceClassCount> kSurfaceClasses = 
     SurfaceClass::wire,   SurfaceClass::pole,     SurfaceClass::tree,
     SurfaceClass::ground, SurfaceClass::building, SurfaceClass::fog};
 
+// The code that stands for "class unknown" wherever a class is a byte (a decoded return, Frame
+// returns, the PLY class, the report page).
+inline constexpr std::uint8_t kUnknownSurface = 255;
+
 // "wire", "pole", "tree", "ground", "building", "fog" (the `class` column of INTERFACE.md)
 [[nodiscard]] constexpr std::string_view to_string(SurfaceClass surface) {
   switch (surface) {

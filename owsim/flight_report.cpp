@@ -72,10 +72,10 @@ json trajectory_json(const ReportTrajectory& trajectory) {
   const std::size_t keep = std::min(n, kMaxTrajectoryRows);
   for (std::size_t i = 0; i < keep; ++i) {
     const auto& row = trajectory.rows[keep == 1 ? 0 : i * (n - 1) / (keep - 1)];
-    columns["time_s"].push_back(row[0]);
-    columns["e_m"].push_back(std::round(row[1] * 100) / 100);
-    columns["n_m"].push_back(std::round(row[2] * 100) / 100);
-    columns["u_m"].push_back(std::round(row[3] * 100) / 100);
+    columns["time_s"].push_back(row.time_s);
+    columns["e_m"].push_back(std::round(row.e_m * 100) / 100);
+    columns["n_m"].push_back(std::round(row.n_m * 100) / 100);
+    columns["u_m"].push_back(std::round(row.u_m * 100) / 100);
   }
   return columns;
 }
@@ -87,8 +87,8 @@ json frames_json(const ReportFrames& frames, const RangeImageLayout& layout,
     const auto f = static_cast<std::size_t>(frame);
     if (trajectory && f < trajectory->rows.size()) {
       const auto& row = trajectory->rows[f];
-      time_s.push_back(row[0]);
-      pose.push_back({row[1], row[2], row[3], row[4], row[5], row[6]});
+      time_s.push_back(row.time_s);
+      pose.push_back({row.e_m, row.n_m, row.u_m, row.roll_deg, row.pitch_deg, row.heading_deg});
       continue;
     }
     const double t = f < points.frame_first_time_s.size() ? points.frame_first_time_s[f] : NAN;
@@ -190,9 +190,11 @@ FlightReport write_flight_report(const std::filesystem::path& folder_path,
   ScanParams scan;
   if (folder.hellas_words) scan.model = SensorModel::hellas;
   meta["scene"] = nullptr;
+  std::optional<Geodetic> scenario_origin;
   if (options.scenario) {
     const Scenario scenario = load_scenario(*options.scenario);
     scan = scenario.scan;
+    scenario_origin = scenario.origin;
     const Scene scene = build_scene(scenario);
     meta["scene"] = report_scene_json(scene, kMaxCylinders);
     meta["scenario_file"] = options.scenario->string();
@@ -222,13 +224,23 @@ FlightReport write_flight_report(const std::filesystem::path& folder_path,
   } else if (folder.points_ply) {
     points = read_report_points_ply(*folder.points_ply);
   } else if (folder.points_las) {
-    notes.push_back("Only points.las here: the page reads points.csv or points.ply, so it shows "
-                    "no returns (write them with --outputs csv or ply).");
+    // LAS holds UTM: the scenario's origin, or the one trajectory.csv implies, brings it home.
+    std::optional<Geodetic> origin = scenario_origin;
+    if (!origin && trajectory && !trajectory->rows.empty()) {
+      const TrajectoryRow& row = trajectory->rows.front();
+      origin = origin_of_frame({row.lat_deg, row.lon_deg, row.h_m}, {row.e_m, row.n_m, row.u_m});
+    }
+    if (!origin) {
+      notes.push_back("points.las is shown in its own grid (easting, northing and height less "
+                      "the file's offsets): without trajectory.csv or --scenario there is no "
+                      "scenario origin to place it.");
+    }
+    points = read_report_points_las(*folder.points_las, origin);
   } else {
     notes.push_back("No point file in this folder (the run wrote words only?): no returns to "
                     "show. owsim decode, or a run with --outputs points, writes them.");
   }
-  if ((folder.points_csv || folder.points_ply) && points.size() == 0) {
+  if ((folder.points_csv || folder.points_ply || folder.points_las) && points.size() == 0) {
     notes.push_back("The flight has no returns: the sensor saw nothing.");
   }
 

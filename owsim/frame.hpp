@@ -16,8 +16,6 @@
 
 namespace owsim {
 
-// ReturnRecord::surface: SurfaceClass's values, and this for a return of no known class.
-inline constexpr std::uint8_t kUnknownSurface = 255;
 
 // One detected return: the points.csv columns, in their order, as numbers. Standard layout with
 // a fixed size, the same as the C ABI's owsim_return and the Python module's structured dtype.

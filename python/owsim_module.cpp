@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "geometry/error.hpp"
+#include "owsim/flight_report.hpp"
 #include "owsim/simulation.hpp"
 #include "owsim/version.hpp"
 
@@ -244,6 +245,36 @@ PYBIND11_MODULE(owsim, m) {
   }
   m.attr("CLASS_NAMES") = class_names;
   m.attr("UNKNOWN_CLASS") = kUnknownSurface;
+
+  m.def(
+      "view",
+      [](const std::filesystem::path& folder, std::optional<std::filesystem::path> out,
+         std::optional<std::filesystem::path> scenario, std::uint64_t max_points,
+         int max_frames) {
+        FlightReportOptions options;
+        if (out) options.out = *out;
+        options.scenario = std::move(scenario);
+        options.max_points = max_points;
+        options.max_frames = max_frames;
+        FlightReport report;
+        {
+          py::gil_scoped_release unlocked;
+          report = write_flight_report(folder, options);
+        }
+        py::dict done;
+        done["file"] = report.file.string();
+        done["bytes"] = report.bytes;
+        done["points_total"] = report.points_total;
+        done["points_shown"] = report.points_shown;
+        done["frames_total"] = report.frames_total;
+        done["frames_shown"] = report.frames_shown;
+        done["notes"] = report.notes;
+        return done;
+      },
+      py::arg("folder"), py::arg("out") = py::none(), py::kw_only(),
+      py::arg("scenario") = py::none(), py::arg("max_points") = FlightReportOptions{}.max_points,
+      py::arg("max_frames") = FlightReportOptions{}.max_frames,
+      "What `owsim view` does: the folder as one self-contained page; returns what it holds");
 
   py::register_exception_translator([](std::exception_ptr error) {
     try {

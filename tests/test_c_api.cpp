@@ -217,4 +217,39 @@ TEST(CApi, RunWritesTheFilesAndTheCallbackCanStopIt) {
   owsim_simulation_release(simulation);
 }
 
+// owsim_view: the page of a run folder, its counts, and one clear error for a folder that is no
+// owsim output.
+TEST(CApi, ViewWritesThePageOfARunFolder) {
+  const TempDir folder("owsim_c_view");
+  owsim_simulation_options options = owsim_simulation_options_default();
+  options.frames = 4;
+  owsim_simulation* simulation = nullptr;
+  const std::string scenario = (kExamples / "single_span.yaml").string();
+  ASSERT_EQ(owsim_simulation_open_with(scenario.c_str(), &options, &simulation), OWSIM_OK);
+  owsim_run_options run = owsim_run_options_default();
+  const std::string out_dir = (folder / "run").string();
+  run.out_dir = out_dir.c_str();
+  run.outputs = "csv,summary,trajectory";
+  ASSERT_EQ(owsim_simulation_run(simulation, &run, nullptr), OWSIM_OK) << owsim_last_error();
+  owsim_simulation_release(simulation);
+
+  owsim_view_options view = owsim_view_options_default();
+  EXPECT_EQ(view.max_points, 2'000'000U);
+  EXPECT_EQ(view.max_frames, 400);
+  view.scenario_path = scenario.c_str();
+  view.max_frames = 2;
+  owsim_view_report report{};
+  ASSERT_EQ(owsim_view(out_dir.c_str(), &view, &report), OWSIM_OK) << owsim_last_error();
+  EXPECT_EQ(report.frames_total, 4);
+  EXPECT_EQ(report.frames_shown, 2);
+  EXPECT_GT(report.points_total, 0U);
+  EXPECT_EQ(report.points_shown, report.points_total);
+  EXPECT_EQ(fs::file_size(folder / "run" / "report.html"), report.bytes);
+
+  fs::create_directories(folder / "empty");
+  EXPECT_EQ(owsim_view((folder / "empty").c_str(), nullptr, nullptr), OWSIM_ERROR_INPUT);
+  EXPECT_NE(std::string(owsim_last_error()).find("not an owsim output folder"), std::string::npos);
+  EXPECT_EQ(owsim_view(nullptr, nullptr, nullptr), OWSIM_ERROR_ARGUMENT);
+}
+
 }  // namespace

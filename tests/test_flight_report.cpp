@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <zlib.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -19,6 +20,8 @@
 #include "io/report/report_frames.hpp"
 #include "io/report/report_page.hpp"
 #include "io/report/report_points.hpp"
+#include "io/report/report_trajectory.hpp"
+#include "io/scenario/scenario_loader.hpp"
 #include "owsim/flight_report.hpp"
 #include "sensor/fiber_layout.hpp"
 
@@ -252,6 +255,45 @@ TEST(FlightReport, BadFilesNameThemselvesAndLeaveNoPage) {
         << e.what();
   }
   EXPECT_FALSE(std::filesystem::exists(dir / "report.html"));
+}
+
+}  // namespace
+}  // namespace owsim
+
+namespace owsim {
+namespace {
+
+// points.las read back through the zone's inverse projection lands where points.csv puts the
+// same returns in the scenario's frame: with the scenario's origin, and with the origin that
+// trajectory.csv implies (origin_of_frame).
+TEST(ReportPointsLas, LandsOnTheCsvPositions) {
+  const TempDir dir;
+  const std::filesystem::path scenario =
+      std::filesystem::path(OWSIM_SOURCE_DIR) / "examples" / "single_span.yaml";
+  const test::CliResult run = test::run_cli(
+      {"run", scenario.string(), "--out", (dir / "out").string(), "--frames", "12", "--outputs",
+       "csv,las,trajectory", "--quiet"},
+      dir.path());
+  ASSERT_EQ(run.exit_status, 0) << run.err;
+  const ReportPoints csv = read_report_points_csv(dir / "out/points.csv");
+  ASSERT_GT(csv.size(), 100u);
+  const ReportTrajectory trajectory = read_report_trajectory(dir / "out/trajectory.csv");
+  const TrajectoryRow& row = trajectory.rows.front();
+  const Geodetic implied =
+      origin_of_frame({row.lat_deg, row.lon_deg, row.h_m}, {row.e_m, row.n_m, row.u_m});
+  for (const Geodetic& origin : {load_scenario(scenario).origin, implied}) {
+    const ReportPoints las = read_report_points_las(dir / "out/points.las", origin);
+    ASSERT_EQ(las.size(), csv.size());
+    double worst = 0;
+    for (std::size_t i = 0; i < las.size(); ++i) {
+      worst = std::max({worst, std::abs(double{las.e_m[i]} - csv.e_m[i]),
+                        std::abs(double{las.n_m[i]} - csv.n_m[i]),
+                        std::abs(double{las.u_m[i]} - csv.u_m[i])});
+      ASSERT_EQ(las.surface[i], csv.surface[i]) << i;
+    }
+    // LAS keeps 0.1 mm, the CSV 0.1 mm; floats hold ~0.1 mm at a kilometre.
+    EXPECT_LT(worst, 0.002);
+  }
 }
 
 }  // namespace

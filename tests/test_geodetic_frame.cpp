@@ -138,6 +138,26 @@ TEST(LocalFrame, LocalLevelRotationAgreesWithPyproj) {
   EXPECT_NEAR(std::asin(local_up.x()) * 180.0 / std::numbers::pi, 0.18, 0.01);
 }
 
+// origin_of_frame inverts the frame for its origin: from a point given both ways (geodetic and
+// local), the true origin comes back, over random origins and points up to 30 km away.
+TEST(LocalFrame, OriginOfFrameRecoversTheOrigin) {
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> lat(-80, 80), lon(-180, 180), h(-100, 3000),
+      horizontal(-30'000, 30'000), up(-3'000, 3'000);
+  for (int i = 0; i < 200; ++i) {
+    const Geodetic origin{lat(random), lon(random), h(random)};
+    const LocalFrame frame(origin);
+    const Eigen::Vector3d enu(horizontal(random), horizontal(random), up(random));
+    const Geodetic point = frame.geodetic_from_enu(enu);
+    const Geodetic found = origin_of_frame(point, enu);
+    EXPECT_NEAR(found.lat_deg, origin.lat_deg, 1e-10) << i;
+    EXPECT_NEAR(found.lon_deg, origin.lon_deg, 1e-10) << i;
+    EXPECT_NEAR(found.h_m, origin.h_m, 1e-5) << i;
+    EXPECT_LT((LocalFrame(found).enu_from_geodetic(point) - enu).norm(), 1e-5) << i;
+  }
+  EXPECT_THROW((void)origin_of_frame({0, 0, 0}, Eigen::Vector3d(NAN, 0, 0)), Error);
+}
+
 TEST(LocalFrame, RejectsOriginsOutOfRange) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(LocalFrame({90.5, 0, 0}), Error);

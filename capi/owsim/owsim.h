@@ -238,6 +238,30 @@ OWSIM_API owsim_status owsim_simulation_run(const owsim_simulation* simulation,
                                             const owsim_run_options* options,
                                             owsim_run_report* report);
 
+/* ---- looking at a flight ---- */
+
+/* What `owsim view` takes. Start from owsim_view_options_default(). */
+typedef struct owsim_view_options {
+  uint32_t struct_size;       /* sizeof(owsim_view_options) */
+  const char* out_file;       /* NULL: <folder>/report.html */
+  const char* scenario_path;  /* NULL: no scene objects drawn */
+  uint64_t max_points;        /* 3D points the page carries (default 2000000) */
+  int32_t max_frames;         /* range images the page carries (default 400) */
+} owsim_view_options;
+
+typedef struct owsim_view_report {
+  uint64_t bytes; /* of the page */
+  uint64_t points_total, points_shown;
+  int64_t frames_total, frames_shown;
+} owsim_view_report;
+
+OWSIM_API owsim_view_options owsim_view_options_default(void);
+
+/* What `owsim view` does: the folder of a run, a decode or a merge + decode as one self-contained
+ * page (report.html). options and report may be NULL. */
+OWSIM_API owsim_status owsim_view(const char* folder, const owsim_view_options* options,
+                                  owsim_view_report* report);
+
 #ifdef __cplusplus
 }
 #endif

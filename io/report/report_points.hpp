@@ -7,12 +7,13 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
-namespace owsim {
+#include "geometry/geodetic_frame.hpp"
 
-inline constexpr std::uint8_t kUnknownSurface = 255;  // surface of a return of unknown class
+namespace owsim {
 
 // A range as the page carries it: decimetres, 1..65535 (6.5 km); 0 for an unknown range.
 [[nodiscard]] inline std::uint16_t range_decimetres(float range_m) {
@@ -21,7 +22,7 @@ inline constexpr std::uint8_t kUnknownSurface = 255;  // surface of a return of 
 }
 
 struct ReportPoints {
-  std::string source;                  // "points.csv" or "points.ply"
+  std::string source;                  // "points.csv", "points.ply" or "points.las"
   std::vector<float> e_m, n_m, u_m;    // local East-North-Up from the scenario origin
   std::vector<float> range_m;          // NaN: not in the file (PLY)
   std::vector<std::uint8_t> surface;   // SurfaceClass code, kUnknownSurface if unknown
@@ -44,5 +45,14 @@ struct ReportPoints {
 // points.ply as owsim writes it (binary little-endian: double x y z, float intensity, uchar
 // class). Throws owsim::Error naming the file for any other layout or a short file.
 [[nodiscard]] ReportPoints read_report_points_ply(const std::filesystem::path& path);
+
+// points.las as owsim writes it (LAS 1.4, point format 6, UTM/UPS with the WKT VLR,
+// io/points/las_writer.hpp): positions through the zone's inverse projection into the local frame
+// of `origin`; without an origin, easting/northing/height minus the file's offsets (a frame of
+// the file's own, not the scenario's). Classes from the ASPRS codes owsim writes (2, 5, 6, 14,
+// 15, 18; others unknown); no range, frame or fiber. Throws owsim::Error naming the file for
+// another format, a missing or unknown coordinate system, or a short file.
+[[nodiscard]] ReportPoints read_report_points_las(const std::filesystem::path& path,
+                                                  const std::optional<Geodetic>& origin);
 
 }  // namespace owsim

@@ -1,6 +1,7 @@
 #include "io/report/report_trajectory.hpp"
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <fstream>
 #include <string>
@@ -12,12 +13,13 @@
 namespace owsim {
 
 ReportTrajectory read_report_trajectory(const std::filesystem::path& path) {
-  static constexpr std::array<std::string_view, 7> kNames = {
-      "time_s", "e_m", "n_m", "u_m", "roll_deg", "pitch_deg", "heading_deg"};
+  static constexpr std::array<std::string_view, 10> kNames = {
+      "time_s", "lat_deg", "lon_deg", "h_m",      "e_m",
+      "n_m",    "u_m",     "roll_deg", "pitch_deg", "heading_deg"};
   std::ifstream in(path);
   if (!in) throw file_error(path.string(), "cannot open for reading");
   ReportTrajectory out;
-  std::array<std::size_t, 7> index{};
+  std::array<std::size_t, kNames.size()> index{};
   std::vector<std::string_view> cells;
   std::string line;
   for (std::uint64_t number = 1; std::getline(in, line); ++number) {
@@ -33,7 +35,7 @@ ReportTrajectory read_report_trajectory(const std::filesystem::path& path) {
       continue;
     }
     if (line.empty()) continue;
-    std::array<double, 7> row{};
+    std::array<double, kNames.size()> row{};
     for (std::size_t c = 0; c < kNames.size(); ++c) {
       const std::string_view cell = index[c] < cells.size() ? cells[index[c]] : std::string_view();
       const auto [end, error] = std::from_chars(cell.data(), cell.data() + cell.size(), row[c]);
@@ -42,7 +44,8 @@ ReportTrajectory read_report_trajectory(const std::filesystem::path& path) {
                                      "' is not a number");
       }
     }
-    out.rows.push_back(row);
+    out.rows.push_back({row[0], row[1], row[2], row[3], row[4], row[5], row[6], row[7], row[8],
+                        row[9]});
   }
   if (in.bad()) throw file_error(path.string(), "read error");
   return out;

@@ -1,15 +1,17 @@
 #pragma once
 // trajectory.csv of `owsim run` read back for `owsim view`: the sensor pose at every frame start
-// (INTERFACE.md: time_s, e_m, n_m, u_m, roll_deg, pitch_deg, heading_deg used; lat/lon/h not).
-#include <array>
+// (INTERFACE.md: every column, by name).
 #include <filesystem>
 #include <vector>
 
 namespace owsim {
 
+struct TrajectoryRow {
+  double time_s, lat_deg, lon_deg, h_m, e_m, n_m, u_m, roll_deg, pitch_deg, heading_deg;
+};
+
 struct ReportTrajectory {
-  // time_s, e_m, n_m, u_m, roll_deg, pitch_deg, heading_deg of each row, in file order.
-  std::vector<std::array<double, 7>> rows;
+  std::vector<TrajectoryRow> rows;  // in file order: row k is frame k's start
 };
 
 // Throws owsim::Error naming file:line and the column for a missing column or a bad number.

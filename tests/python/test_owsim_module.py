@@ -155,6 +155,22 @@ class Module(unittest.TestCase):
                 self.sim.run(tmp, outputs="d64", progress=stop)
             self.assertFalse(Path(tmp, "flight.d64").exists())
 
+    def test_view_writes_the_page_of_a_run(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            self.sim.run(tmp, outputs="csv,summary,trajectory")
+            page = owsim.view(tmp, scenario=EXAMPLES / "single_span.yaml", max_frames=3)
+            self.assertEqual(page["file"], str(Path(tmp, "report.html")))
+            self.assertEqual(page["frames_total"], 5)
+            self.assertEqual(page["frames_shown"], 3)
+            self.assertEqual(page["points_shown"], page["points_total"])
+            self.assertEqual(Path(page["file"]).stat().st_size, page["bytes"])
+            self.assertIn("The frame player holds 3 of 5 frames", " ".join(page["notes"]))
+        with tempfile.TemporaryDirectory() as empty:
+            with self.assertRaisesRegex(ValueError, "not an owsim output folder"):
+                owsim.view(empty)
+        with self.assertRaises(OSError):
+            owsim.view(Path(empty, "gone"))
+
 
 if __name__ == "__main__":
     unittest.main()

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # `owsim view` end to end in a real browser (tests/web/report_page.mjs): the report of a run of
 # the corridor example, of a recording decoded without labels (as from real data: no summary, no
-# trajectory, no classes), of a words-only run (no points), and of a run thinned to a small
-# budget; and the refusal of a folder that is no owsim output. Outputs and screenshots stay in
+# trajectory, no classes), of a words-only run (no points), of a LAS-only run, and of a run thinned
+# to a small budget; and the refusal of a folder that is no owsim output. Outputs and screenshots stay in
 # BUILD/web-report and BUILD/web-screens (CI artifacts).
 #   tests/web/report_pages.sh BUILD_DIR
 set -euo pipefail
@@ -34,12 +34,19 @@ page "$out/decoded/report.html" "$shots/decoded" --expect-frames \
 page "$out/words_only/report.html" "$shots/words_only" --expect-objects --expect-empty \
   --expect-note "No point file in this folder"
 
-# 4. A budget smaller than the flight: thinned, and the page says how.
+# 4. LAS alone: placed through the origin trajectory.csv implies; no frame player (LAS has no
+#    frame, line or fiber), said in the page.
+"$owsim" run examples/corridor.yaml --out "$out/las_only" --frames 30 --outputs las,summary,trajectory --quiet
+"$owsim" view "$out/las_only" --quiet
+page "$out/las_only/report.html" "$shots/las_only" --expect-objects \
+  --expect-note "The frame player needs points.csv"
+
+# 5. A budget smaller than the flight: thinned, and the page says how.
 "$owsim" view "$out/corridor" --out "$out/thinned.html" --max-points 50000 --max-frames 7 --quiet
 page "$out/thinned.html" "$shots/thinned" --expect-frames --expect-objects \
   --expect-note "The 3D view shows 50,000 of"
 
-# 5. Not an owsim folder: one line, non-zero, nothing written.
+# 6. Not an owsim folder: one line, non-zero, nothing written.
 mkdir -p "$out/not_owsim"
 echo "hello" > "$out/not_owsim/notes.txt"
 if "$owsim" view "$out/not_owsim" 2> "$out/not_owsim.err"; then
