@@ -44,11 +44,13 @@ void add_view_command(CLI::App& app, CommandResult& /*result*/) {
   command->add_option("--scenario", options->scenario,
                       "the flight's scenario: draws its wires, poles, trees and meshes, and sets "
                       "the sensor's frame layout");
-  command->add_option("--max-points", options->report.max_points,
-                      "most returns the 3D view carries (rare classes kept whole; default 2000000)")
+  command
+      ->add_option("--max-points", options->report.max_points,
+                   "most returns the 3D view carries (rare classes kept whole; default 2000000)")
       ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{100'000'000}));
-  command->add_option("--max-frames", options->report.max_frames,
-                      "most frames the frame player carries, evenly spread (default 400)")
+  command
+      ->add_option("--max-frames", options->report.max_frames,
+                   "most frames the frame player carries, evenly spread (default 400)")
       ->check(CLI::Range(1, 100'000));
   command->add_flag("--quiet", options->quiet, "print nothing on success");
   command->callback([options] { run_view(*options); });

@@ -66,7 +66,9 @@ json ground_truth(json& summary, std::size_t max_objects, std::size_t& total) {
 }
 
 json trajectory_json(const ReportTrajectory& trajectory) {
-  json columns = {{"time_s", json::array()}, {"e_m", json::array()}, {"n_m", json::array()},
+  json columns = {{"time_s", json::array()},
+                  {"e_m", json::array()},
+                  {"n_m", json::array()},
                   {"u_m", json::array()}};
   const std::size_t n = trajectory.rows.size();
   const std::size_t keep = std::min(n, kMaxTrajectoryRows);
@@ -118,8 +120,8 @@ json cloud_json(const ReportCloud& cloud, const std::string& source) {
                                  : std::string("unknown");
     by_class[name] = {{"total", cloud.total_by_class[slot]}, {"shown", cloud.shown_by_class[slot]}};
   }
-  return {{"source", source},          {"total", cloud.total},     {"shown", cloud.shown()},
-          {"box_min", cloud.box_min},  {"box_max", cloud.box_max}, {"by_class", by_class}};
+  return {{"source", source},         {"total", cloud.total},     {"shown", cloud.shown()},
+          {"box_min", cloud.box_min}, {"box_max", cloud.box_max}, {"by_class", by_class}};
 }
 
 std::vector<std::uint8_t> cloud_bytes(const ReportCloud& cloud) {
@@ -144,8 +146,10 @@ std::string thinning_note(const ReportCloud& cloud) {
     note += slot == 0 ? " " : " ";
     note += slot < kSurfaceClassCount ? std::string(to_string(static_cast<SurfaceClass>(slot)))
                                       : std::string("unknown");
-    note += shown == total ? " all;"
-                           : " 1 in " + std::to_string((total + shown - 1) / std::max<std::uint64_t>(shown, 1)) + ";";
+    note += shown == total
+                ? " all;"
+                : " 1 in " +
+                      std::to_string((total + shown - 1) / std::max<std::uint64_t>(shown, 1)) + ";";
   }
   note.back() = '.';
   return note;
@@ -181,8 +185,9 @@ FlightReport write_flight_report(const std::filesystem::path& folder_path,
       title = summary["scenario"].get<std::string>();
     }
   } else {
-    notes.push_back("No summary.json in this folder (a decoded recording?): no run summary and "
-                    "no ground truth.");
+    notes.push_back(
+        "No summary.json in this folder (a decoded recording?): no run summary and "
+        "no ground truth.");
   }
   meta["summary"] = summary;
   meta["objects_total"] = objects_total;
@@ -203,8 +208,9 @@ FlightReport write_flight_report(const std::filesystem::path& folder_path,
                       thousands(scene.cylinders.size()) + " drawn, evenly chosen.");
     }
   } else {
-    notes.push_back("Scene objects (wires, poles, trees, meshes) are drawn when owsim view is "
-                    "given the flight's scenario: --scenario FILE.");
+    notes.push_back(
+        "Scene objects (wires, poles, trees, meshes) are drawn when owsim view is "
+        "given the flight's scenario: --scenario FILE.");
   }
   meta["sensor"] = {{"model", scan.model == SensorModel::hellas ? "HELLAS" : "MilOWS"},
                     {"timeout_range_m", timeout_range_m(scan.counter)}};
@@ -231,14 +237,16 @@ FlightReport write_flight_report(const std::filesystem::path& folder_path,
       origin = origin_of_frame({row.lat_deg, row.lon_deg, row.h_m}, {row.e_m, row.n_m, row.u_m});
     }
     if (!origin) {
-      notes.push_back("points.las is shown in its own grid (easting, northing and height less "
-                      "the file's offsets): without trajectory.csv or --scenario there is no "
-                      "scenario origin to place it.");
+      notes.push_back(
+          "points.las is shown in its own grid (easting, northing and height less "
+          "the file's offsets): without trajectory.csv or --scenario there is no "
+          "scenario origin to place it.");
     }
     points = read_report_points_las(*folder.points_las, origin);
   } else {
-    notes.push_back("No point file in this folder (the run wrote words only?): no returns to "
-                    "show. owsim decode, or a run with --outputs points, writes them.");
+    notes.push_back(
+        "No point file in this folder (the run wrote words only?): no returns to "
+        "show. owsim decode, or a run with --outputs points, writes them.");
   }
   if ((folder.points_csv || folder.points_ply || folder.points_las) && points.size() == 0) {
     notes.push_back("The flight has no returns: the sensor saw nothing.");
@@ -248,10 +256,10 @@ FlightReport write_flight_report(const std::filesystem::path& folder_path,
   meta["frames"] = nullptr;
   if (points.pulses_known) {
     const RangeImageLayout layout = range_image_layout(scan);
-    const std::int64_t hint = summary.is_object() && summary.contains("frames") &&
-                                      summary["frames"].is_number_integer()
-                                  ? summary["frames"].get<std::int64_t>()
-                                  : 0;
+    const std::int64_t hint =
+        summary.is_object() && summary.contains("frames") && summary["frames"].is_number_integer()
+            ? summary["frames"].get<std::int64_t>()
+            : 0;
     const ReportFrames frames = report_frames(points, layout, hint, options.max_frames);
     report.frames_total = frames.frames_total;
     report.frames_shown = static_cast<std::int64_t>(frames.frames.size());
@@ -267,8 +275,10 @@ FlightReport write_flight_report(const std::filesystem::path& folder_path,
     meta["frames"] = frames_json(frames, layout, trajectory, points);
     frames_blob = deflate_base64(frames.planes);
   } else if (points.size() > 0) {
-    notes.push_back("The frame player needs points.csv (frame, line and fiber of each return); "
-                    "this folder has " + points.source + " only.");
+    notes.push_back(
+        "The frame player needs points.csv (frame, line and fiber of each return); "
+        "this folder has " +
+        points.source + " only.");
   }
 
   const ReportCloud cloud = report_cloud(points, options.max_points);
@@ -280,8 +290,8 @@ FlightReport write_flight_report(const std::filesystem::path& folder_path,
 
   meta["title"] = title;
   meta["notes"] = notes;
-  report.bytes = write_report_page(report.file, "owsim — " + title, meta.dump(), frames_blob,
-                                   cloud_blob);
+  report.bytes =
+      write_report_page(report.file, "owsim — " + title, meta.dump(), frames_blob, cloud_blob);
   return report;
 }
 

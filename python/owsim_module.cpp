@@ -249,8 +249,7 @@ PYBIND11_MODULE(owsim, m) {
   m.def(
       "view",
       [](const std::filesystem::path& folder, std::optional<std::filesystem::path> out,
-         std::optional<std::filesystem::path> scenario, std::uint64_t max_points,
-         int max_frames) {
+         std::optional<std::filesystem::path> scenario, std::uint64_t max_points, int max_frames) {
         FlightReportOptions options;
         if (out) options.out = *out;
         options.scenario = std::move(scenario);

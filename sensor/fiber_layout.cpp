@@ -83,9 +83,8 @@ std::vector<int> fibers_top_down(const ScanParams& p) {
   for (int fiber = 1; fiber <= p.fibers_per_line; ++fiber) {
     if (!is_reference_fiber(p, fiber)) fibers.push_back(fiber);
   }
-  std::stable_sort(fibers.begin(), fibers.end(), [&](int a, int b) {
-    return fiber_alpha_deg(p, a) > fiber_alpha_deg(p, b);
-  });
+  std::stable_sort(fibers.begin(), fibers.end(),
+                   [&](int a, int b) { return fiber_alpha_deg(p, a) > fiber_alpha_deg(p, b); });
   return fibers;
 }
 

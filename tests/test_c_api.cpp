@@ -128,7 +128,8 @@ TEST(CApi, NullHandlesAndBadArgumentsGiveStatusCodes) {
 TEST(CApi, BadScenariosAndFilesGiveOneLine) {
   owsim_simulation* simulation = nullptr;
   EXPECT_EQ(owsim_simulation_open("/nonexistent/scenario.yaml", &simulation), OWSIM_ERROR_FILE);
-  EXPECT_STREQ(owsim_last_error(), "/nonexistent/scenario.yaml: cannot read the YAML file: no such file");
+  EXPECT_STREQ(owsim_last_error(),
+               "/nonexistent/scenario.yaml: cannot read the YAML file: no such file");
   EXPECT_EQ(simulation, nullptr);
   EXPECT_EQ(owsim_simulation_open_yaml("name: x\norigin: {lat: 95, lon: 0, h: 0}\n", "bad.yaml",
                                        nullptr, &simulation),

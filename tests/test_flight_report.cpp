@@ -44,7 +44,8 @@ void add_return(ReportPoints& p, int frame, int line, int fiber, int ret, float 
   p.pulses_known = true;
 }
 
-std::uint16_t cell_range(const ReportFrames& f, std::size_t slot, std::size_t cells, std::size_t c) {
+std::uint16_t cell_range(const ReportFrames& f, std::size_t slot, std::size_t cells,
+                         std::size_t c) {
   const std::uint8_t* plane = f.planes.data() + slot * 3 * cells;
   return static_cast<std::uint16_t>(plane[2 * c] | (plane[2 * c + 1] << 8));
 }
@@ -95,8 +96,10 @@ TEST(ReportCloud, RareClassesStayWholeAndPositionsKeepTheirBound) {
   ReportPoints p;
   std::mt19937 random(7);
   std::uniform_real_distribution<float> x(-1500.0f, 2500.0f), z(300.0f, 420.0f);
-  for (int i = 0; i < 5000; ++i) add_return(p, 0, 0, 1, 1, 500.0f, SurfaceClass::ground, x(random), x(random), z(random));
-  for (int i = 0; i < 40; ++i) add_return(p, 0, 0, 1, 1, 250.0f, SurfaceClass::wire, x(random), x(random), z(random));
+  for (int i = 0; i < 5000; ++i)
+    add_return(p, 0, 0, 1, 1, 500.0f, SurfaceClass::ground, x(random), x(random), z(random));
+  for (int i = 0; i < 40; ++i)
+    add_return(p, 0, 0, 1, 1, 250.0f, SurfaceClass::wire, x(random), x(random), z(random));
   const ReportCloud all = report_cloud(p, 1'000'000);
   ASSERT_EQ(all.shown(), 5040u);
   for (std::size_t i = 0; i < all.shown(); ++i) {
@@ -121,11 +124,13 @@ TEST(ReportPointsCsv, ReadsColumnsByNameAndNamesBadCells) {
     std::ofstream(dir / "points.csv") << text;
     return dir / "points.csv";
   };
-  const std::string header = "frame,pulse,line,fiber,return,time_s,range_m,counter,e_m,n_m,u_m,"
-                             "lat_deg,lon_deg,h_m,class,object,energy_rel,incidence_deg\n";
-  const ReportPoints p = read_report_points_csv(write(
-      header + "2,5,0,6,1,0.5,214.8,358,-1156.7,-117.6,-0.05,48.6,10.8,450.0,wire,\"a,b\",0.02,65\n"
-               "2,6,0,7,2,0.25,100.0,358,1,2,3,48.6,10.8,450.0,unknown,,,\n"));
+  const std::string header =
+      "frame,pulse,line,fiber,return,time_s,range_m,counter,e_m,n_m,u_m,"
+      "lat_deg,lon_deg,h_m,class,object,energy_rel,incidence_deg\n";
+  const ReportPoints p = read_report_points_csv(
+      write(header +
+            "2,5,0,6,1,0.5,214.8,358,-1156.7,-117.6,-0.05,48.6,10.8,450.0,wire,\"a,b\",0.02,65\n"
+            "2,6,0,7,2,0.25,100.0,358,1,2,3,48.6,10.8,450.0,unknown,,,\n"));
   ASSERT_EQ(p.size(), 2u);
   EXPECT_TRUE(p.pulses_known);
   EXPECT_FLOAT_EQ(p.e_m[0], -1156.7f);
@@ -143,8 +148,10 @@ TEST(ReportPointsCsv, ReadsColumnsByNameAndNamesBadCells) {
     }
     return std::string("no error");
   };
-  EXPECT_EQ(message("frame,e_m,n_m\n"), (dir / "points.csv").string() + ":1: no column u_m "
-                                        "(points.csv of owsim run or owsim decode has e_m, n_m, u_m)");
+  EXPECT_EQ(message("frame,e_m,n_m\n"),
+            (dir / "points.csv").string() +
+                ":1: no column u_m "
+                "(points.csv of owsim run or owsim decode has e_m, n_m, u_m)");
   EXPECT_EQ(message("e_m,n_m,u_m,range_m\n1,2,3,4\n1,2,3,x\n"),
             (dir / "points.csv").string() + ":3: range_m: 'x' is not a number");
   EXPECT_EQ(message("e_m,n_m,u_m,class\n1,2,3,cable\n"),
@@ -233,7 +240,8 @@ TEST(FlightReport, ThePageCarriesTheFolderAndSaysWhatItLeavesOut) {
   EXPECT_NE(notes.find("--scenario FILE"), std::string::npos) << notes;
 
   const std::size_t cells = 127 * 159;
-  const std::vector<std::uint8_t> planes = unpack_blob(element(html, "owsim-frames"), 3 * 3 * cells);
+  const std::vector<std::uint8_t> planes =
+      unpack_blob(element(html, "owsim-frames"), 3 * 3 * cells);
   EXPECT_EQ(planes[0] | (planes[1] << 8), 2000);  // frame 0, top row (fiber 65), column 0
   EXPECT_EQ(planes[2 * cells], 1 + static_cast<int>(SurfaceClass::wire));
   const std::vector<std::uint8_t> cloud = unpack_blob(element(html, "owsim-cloud"), 2 * 9);
@@ -270,10 +278,10 @@ TEST(ReportPointsLas, LandsOnTheCsvPositions) {
   const TempDir dir;
   const std::filesystem::path scenario =
       std::filesystem::path(OWSIM_SOURCE_DIR) / "examples" / "single_span.yaml";
-  const test::CliResult run = test::run_cli(
-      {"run", scenario.string(), "--out", (dir / "out").string(), "--frames", "12", "--outputs",
-       "csv,las,trajectory", "--quiet"},
-      dir.path());
+  const test::CliResult run =
+      test::run_cli({"run", scenario.string(), "--out", (dir / "out").string(), "--frames", "12",
+                     "--outputs", "csv,las,trajectory", "--quiet"},
+                    dir.path());
   ASSERT_EQ(run.exit_status, 0) << run.err;
   const ReportPoints csv = read_report_points_csv(dir / "out/points.csv");
   ASSERT_GT(csv.size(), 100u);

@@ -20,8 +20,9 @@ std::optional<std::filesystem::path> file_in(const std::filesystem::path& direct
 FlightFolder find_flight_folder(const std::filesystem::path& directory) {
   std::error_code error;
   if (!std::filesystem::is_directory(directory, error)) {
-    throw file_error(directory.string(), "not a folder (owsim view takes the folder a run, a "
-                                         "decode or a merge + decode wrote)");
+    throw file_error(directory.string(),
+                     "not a folder (owsim view takes the folder a run, a "
+                     "decode or a merge + decode wrote)");
   }
   FlightFolder folder;
   folder.directory = directory;

@@ -24,9 +24,9 @@ struct ReportCloud {
   std::array<std::uint64_t, kCloudClassSlots> total_by_class{};
   std::array<std::uint64_t, kCloudClassSlots> shown_by_class{};
   std::array<double, 3> box_min{}, box_max{};  // of the finite positions, local ENU metres
-  std::vector<std::uint16_t> xyz;      // 3 per shown return: round((x − min)/(max − min) · 65535)
-  std::vector<std::uint8_t> surface;   // SurfaceClass code, kUnknownSurface
-  std::vector<std::uint16_t> range_dm; // 0 unknown
+  std::vector<std::uint16_t> xyz;  // 3 per shown return: round((x − min)/(max − min) · 65535)
+  std::vector<std::uint8_t> surface;    // SurfaceClass code, kUnknownSurface
+  std::vector<std::uint16_t> range_dm;  // 0 unknown
   [[nodiscard]] std::size_t shown() const { return surface.size(); }
 };
 

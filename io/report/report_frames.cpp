@@ -48,7 +48,8 @@ ReportFrames report_frames(const ReportPoints& points, const RangeImageLayout& l
   if (max_frames < 1) throw input_error("--max-frames", std::to_string(max_frames) + " < 1");
   ReportFrames out;
   std::int64_t last_frame = -1;
-  for (const std::int32_t frame : points.frame) last_frame = std::max<std::int64_t>(last_frame, frame);
+  for (const std::int32_t frame : points.frame)
+    last_frame = std::max<std::int64_t>(last_frame, frame);
   out.frames_total = std::max(frames_total_hint, last_frame + 1);
   const std::int64_t shown = std::min<std::int64_t>(out.frames_total, max_frames);
   std::vector<std::int32_t> slot_of_frame(static_cast<std::size_t>(out.frames_total), -1);
@@ -75,7 +76,8 @@ ReportFrames report_frames(const ReportPoints& points, const RangeImageLayout& l
       continue;
     }
     const int column = points.frame[i] % 2 == 0 ? line : layout.lines - 1 - line;
-    const std::size_t cell = static_cast<std::size_t>(row) * lines + static_cast<std::size_t>(column);
+    const std::size_t cell =
+        static_cast<std::size_t>(row) * lines + static_cast<std::size_t>(column);
     std::uint8_t* plane = out.planes.data() + static_cast<std::size_t>(slot) * frame_bytes;
     if (points.return_number[i] == 1) {
       const std::uint16_t dm = range_decimetres(points.range_m[i]);

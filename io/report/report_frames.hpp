@@ -17,19 +17,19 @@
 namespace owsim {
 
 struct RangeImageLayout {
-  int lines = 0;                    // columns
-  std::vector<int> fibers;          // the fiber of each row, top to bottom
-  std::vector<double> alpha_deg;    // α of each row
-  std::vector<int> row_of_fiber;    // by fiber 0..fibers_per_line; −1: no row
-  double beta_first_deg = 0.0;      // nominal mirror β of column 0 (the sweep start)
-  double beta_last_deg = 0.0;       // of the last column
+  int lines = 0;                  // columns
+  std::vector<int> fibers;        // the fiber of each row, top to bottom
+  std::vector<double> alpha_deg;  // α of each row
+  std::vector<int> row_of_fiber;  // by fiber 0..fibers_per_line; −1: no row
+  double beta_first_deg = 0.0;    // nominal mirror β of column 0 (the sweep start)
+  double beta_last_deg = 0.0;     // of the last column
 };
 
 [[nodiscard]] RangeImageLayout range_image_layout(const ScanParams& scan);
 
 struct ReportFrames {
-  std::int64_t frames_total = 0;      // frames of the flight (the highest frame seen + 1, or more)
-  std::vector<std::int64_t> frames;   // the frames shown, ascending
+  std::int64_t frames_total = 0;     // frames of the flight (the highest frame seen + 1, or more)
+  std::vector<std::int64_t> frames;  // the frames shown, ascending
   // Per shown frame, rows × lines cells: the ranges (uint16, little-endian) then the marks.
   std::vector<std::uint8_t> planes;
   std::uint64_t returns_outside = 0;  // returns whose line or fiber the layout has no cell for

@@ -22,7 +22,8 @@ namespace owsim {
 [[nodiscard]] std::string_view report_script();
 
 // Writes the page to `path` atomically. `meta_json` is a JSON object's text; the blobs are already
-// deflate_base64. Returns the page's size in bytes. Throws owsim::FileError if it cannot be written.
+// deflate_base64. Returns the page's size in bytes. Throws owsim::FileError if it cannot be
+// written.
 std::uint64_t write_report_page(const std::filesystem::path& path, std::string_view title,
                                 std::string_view meta_json, std::string_view frames_blob,
                                 std::string_view cloud_blob);

@@ -67,7 +67,9 @@ class PointsCsvParser {
                std::to_string(header_cells_));
     }
     const auto cell = [&](Column c) { return cells_[static_cast<std::size_t>(index_[c])]; };
-    const auto number = [&](Column c) { return index_[c] < 0 ? kNaN : number_cell(cell(c), c, at); };
+    const auto number = [&](Column c) {
+      return index_[c] < 0 ? kNaN : number_cell(cell(c), c, at);
+    };
     out_.e_m.push_back(static_cast<float>(number(kE)));
     out_.n_m.push_back(static_cast<float>(number(kN)));
     out_.u_m.push_back(static_cast<float>(number(kU)));
@@ -105,8 +107,8 @@ class PointsCsvParser {
                               " (points.csv of owsim run or owsim decode has e_m, n_m, u_m)");
       }
     }
-    out_.pulses_known = index_[kFrame] >= 0 && index_[kLine] >= 0 && index_[kFiber] >= 0 &&
-                        index_[kReturn] >= 0;
+    out_.pulses_known =
+        index_[kFrame] >= 0 && index_[kLine] >= 0 && index_[kFiber] >= 0 && index_[kReturn] >= 0;
   }
 
   std::filesystem::path path_;
@@ -167,7 +169,8 @@ ReportPoints read_report_points_ply(const std::filesystem::path& path) {
     header += line + "\n";
     if (line.rfind("element vertex ", 0) == 0) {
       const std::string_view count = std::string_view(line).substr(15);
-      const auto [end, error] = std::from_chars(count.data(), count.data() + count.size(), vertices);
+      const auto [end, error] =
+          std::from_chars(count.data(), count.data() + count.size(), vertices);
       have_count = error == std::errc() && end == count.data() + count.size();
     }
     if (line == "end_header") break;
@@ -179,8 +182,9 @@ ReportPoints read_report_points_ply(const std::filesystem::path& path) {
   if (header.rfind("ply\nformat binary_little_endian 1.0\n", 0) != 0 || !have_count ||
       header.size() < kLayout.size() ||
       header.compare(header.size() - kLayout.size(), kLayout.size(), kLayout) != 0) {
-    throw bad("not the PLY layout owsim writes (binary little-endian double x y z, float "
-              "intensity, uchar class)");
+    throw bad(
+        "not the PLY layout owsim writes (binary little-endian double x y z, float "
+        "intensity, uchar class)");
   }
   constexpr std::size_t kVertexBytes = 3 * 8 + 4 + 1;
   const std::uintmax_t expected = header.size() + vertices * kVertexBytes;

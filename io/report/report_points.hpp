@@ -22,10 +22,10 @@ namespace owsim {
 }
 
 struct ReportPoints {
-  std::string source;                  // "points.csv", "points.ply" or "points.las"
-  std::vector<float> e_m, n_m, u_m;    // local East-North-Up from the scenario origin
-  std::vector<float> range_m;          // NaN: not in the file (PLY)
-  std::vector<std::uint8_t> surface;   // SurfaceClass code, kUnknownSurface if unknown
+  std::string source;                 // "points.csv", "points.ply" or "points.las"
+  std::vector<float> e_m, n_m, u_m;   // local East-North-Up from the scenario origin
+  std::vector<float> range_m;         // NaN: not in the file (PLY)
+  std::vector<std::uint8_t> surface;  // SurfaceClass code, kUnknownSurface if unknown
   // Where each return sits in its frame (points.csv only; empty for PLY).
   std::vector<std::int32_t> frame;
   std::vector<std::int16_t> line, fiber;

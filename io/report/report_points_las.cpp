@@ -1,6 +1,5 @@
 // points.las read back for `owsim view` (io/report/report_points.hpp).
 #include <GeographicLib/UTMUPS.hpp>
-
 #include <array>
 #include <cmath>
 #include <cstring>
@@ -62,7 +61,7 @@ std::optional<LasGridRead> grid_of_wkt(const std::string& wkt) {
 }  // namespace
 
 ReportPoints read_report_points_las(const std::filesystem::path& path,
-                                   const std::optional<Geodetic>& origin) {
+                                    const std::optional<Geodetic>& origin) {
   const auto bad = [&](const std::string& problem) { return input_error(path.string(), problem); };
   std::ifstream in(path, std::ios::binary);
   if (!in) throw file_error(path.string(), "cannot open for reading");

@@ -1,7 +1,7 @@
 #include "io/report/report_scene.hpp"
 
-#include <algorithm>
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 
 namespace owsim {

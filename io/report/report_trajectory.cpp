@@ -14,7 +14,7 @@ namespace owsim {
 
 ReportTrajectory read_report_trajectory(const std::filesystem::path& path) {
   static constexpr std::array<std::string_view, 10> kNames = {
-      "time_s", "lat_deg", "lon_deg", "h_m",      "e_m",
+      "time_s", "lat_deg", "lon_deg",  "h_m",       "e_m",
       "n_m",    "u_m",     "roll_deg", "pitch_deg", "heading_deg"};
   std::ifstream in(path);
   if (!in) throw file_error(path.string(), "cannot open for reading");
@@ -40,12 +40,12 @@ ReportTrajectory read_report_trajectory(const std::filesystem::path& path) {
       const std::string_view cell = index[c] < cells.size() ? cells[index[c]] : std::string_view();
       const auto [end, error] = std::from_chars(cell.data(), cell.data() + cell.size(), row[c]);
       if (error != std::errc() || end != cell.data() + cell.size() || cell.empty()) {
-        throw input_error(where, std::string(kNames[c]) + ": '" + std::string(cell) +
-                                     "' is not a number");
+        throw input_error(where,
+                          std::string(kNames[c]) + ": '" + std::string(cell) + "' is not a number");
       }
     }
-    out.rows.push_back({row[0], row[1], row[2], row[3], row[4], row[5], row[6], row[7], row[8],
-                        row[9]});
+    out.rows.push_back(
+        {row[0], row[1], row[2], row[3], row[4], row[5], row[6], row[7], row[8], row[9]});
   }
   if (in.bad()) throw file_error(path.string(), "read error");
   return out;

@@ -148,6 +148,8 @@ check(pixelStats(summaryPng).colours > 10, 'summary screenshot not blank');
 // 2. Frame player.
 let frameStats = null;
 if (has('--expect-frames')) {
+  const axes = await page.locator('#frame-canvas').getAttribute('aria-label');
+  check(/mirror angle β \(degrees\)/.test(axes) && /fiber elevation α \(degrees\)/.test(axes) && /range \(m\)/.test(axes), `range image axes: ${axes}`);
   const label0 = await page.locator('#frame-label').innerText();
   check(/frame 0 of/.test(label0), `frame label: ${label0}`);
   const first = await shoot('#frame-canvas', 'frame-first');
@@ -185,6 +187,7 @@ if (has('--expect-frames')) {
 
 // 3. Map.
 const mapCanvas = page.locator('#map-canvas');
+check(/north up/.test(await mapCanvas.getAttribute('aria-label')), 'map says north up');
 const scale0 = Number(await mapCanvas.getAttribute('data-scale'));
 const bar0 = Number(await mapCanvas.getAttribute('data-scale-bar'));
 const map0 = await shoot('#map', 'map');

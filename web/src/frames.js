@@ -24,6 +24,8 @@ export function framesSection(meta, planes) {
   const plotW = lines * CELL_W;
   const plotH = rows * CELL_H;
   const canvas = el('canvas', { id: 'frame-canvas', width: MARGIN.left + plotW + MARGIN.right, height: MARGIN.top + plotH + MARGIN.bottom });
+  canvas.setAttribute('role', 'img');
+  canvas.setAttribute('aria-label', `Range image: mirror angle β (degrees) across from ${f.beta_first_deg}° to ${f.beta_last_deg}°, fiber elevation α (degrees) down from ${f.row_alpha_deg[0]}° to ${f.row_alpha_deg[rows - 1]}°, colour bar range (m) 0 to ${Math.round(fullScale)} m`);
   const ctx = canvas.getContext('2d');
   const image = new ImageData(lines, rows);
   const cellCanvas = el('canvas', { width: lines, height: rows });

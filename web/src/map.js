@@ -12,6 +12,8 @@ export function mapSection(meta, points, step) {
   const section = el('section', { id: 'map' }, el('h2', {}, 'Map'));
   const canvas = el('canvas', { id: 'map-canvas', width: WIDTH, height: HEIGHT });
   const ctx = canvas.getContext('2d');
+  canvas.setAttribute('role', 'img');
+  canvas.setAttribute('aria-label', 'Map: east right, north up (north arrow), scale bar in metres, coordinates E and N in metres from the scenario origin');
   const zoomIn = el('button', { type: 'button', id: 'map-zoom-in' }, '+');
   const zoomOut = el('button', { type: 'button', id: 'map-zoom-out' }, '−');
   const reset = el('button', { type: 'button', id: 'map-reset' }, 'Reset');
