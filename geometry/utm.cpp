@@ -100,6 +100,26 @@ UtmPoint utm_from_geodetic(double lat_deg, double lon_deg) {
   return point;
 }
 
+UtmGrid utm_grid_of(const Geodetic& point) {
+  const UtmPoint standard = utm_from_geodetic(point.lat_deg, point.lon_deg);
+  return {standard.zone, standard.northp};
+}
+
+Eigen::Vector2d grid_from_geodetic(const UtmGrid& grid, double lat_deg, double lon_deg) {
+  int zone = 0;
+  bool northp = true;
+  Eigen::Vector2d en;
+  try {
+    GeographicLib::UTMUPS::Forward(lat_deg, lon_deg, zone, northp, en.x(), en.y(), grid.zone);
+  } catch (const GeographicLib::GeographicErr& error) {
+    throw Error(error.what());
+  }
+  if (northp != grid.northp) {
+    en.y() += (grid.northp ? -1.0 : 1.0) * GeographicLib::UTMUPS::UTMShift();
+  }
+  return en;
+}
+
 Geodetic geodetic_from_utm(const UtmPoint& point, double h_m) {
   Geodetic geodetic{0.0, 0.0, h_m};
   try {

@@ -7,6 +7,7 @@
 // and Svalbard (31X, 33X, 35X, 37X) exceptions, and UPS (zone 0) north of 84°N and south of
 // 80°S. Valid ranges are GeographicLib's: UTM eastings 0–1000 km, northings 0–9600 km (north)
 // or 900–10000 km (south); UPS 1200–2800 km (north) or 700–3300 km (south).
+#include <Eigen/Core>
 #include <string>
 #include <string_view>
 
@@ -27,6 +28,23 @@ struct UtmPoint {
 // UTM/UPS → geodetic at height h_m (GeographicLib UTMUPS::Reverse); lon in [−180°, 180°].
 // Throws owsim::Error if the zone, easting or northing is out of range.
 [[nodiscard]] Geodetic geodetic_from_utm(const UtmPoint& point, double h_m);
+
+// A grid a whole file stays in (a LAS file's, from its origin), whatever zone a point falls in.
+struct UtmGrid {
+  int zone = 0;        // 1..60 UTM, 0 UPS
+  bool northp = true;  // hemisphere
+  friend bool operator==(const UtmGrid&, const UtmGrid&) = default;
+};
+
+// The grid of a point's standard zone (utm_from_geodetic): a file's grid from its origin.
+[[nodiscard]] UtmGrid utm_grid_of(const Geodetic& point);
+
+// Geodetic → (easting, northing) in `grid`, the zone forced (GeographicLib UTMUPS::Forward with
+// setzone), one northing across the equator: a point of the other hemisphere is shifted by
+// UTMUPS::UTMShift (10,000 km). Throws owsim::Error with GeographicLib's reason if the point
+// lies outside the grid's valid range.
+[[nodiscard]] Eigen::Vector2d grid_from_geodetic(const UtmGrid& grid, double lat_deg,
+                                                 double lon_deg);
 
 // Parses "ZONE EASTING NORTHING", whitespace separated, e.g. "32U 634000 5394000":
 //   - ZONE is a zone number 1..60 followed by a hemisphere, n/s or north/south in any case

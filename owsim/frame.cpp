@@ -48,7 +48,7 @@ ReturnRecord return_record(const PointRecord& point) {
 
 }  // namespace
 
-void Frame::encode(const ScanParams& scan, const LocalFrame& local_frame) {
+void Frame::encode(const ScanParams& scan, const GeodesyCells& geodesy) {
   model_ = scan.model;
   const FrameView view = result_.view();
   const std::size_t pulses = result_.pulses.size();
@@ -78,10 +78,11 @@ void Frame::encode(const ScanParams& scan, const LocalFrame& local_frame) {
       pack_milows_frame(all_pulses.subspan(r.begin(), n), all_returns.subspan(r.begin(), n),
                         std::span(milows_words_).subspan(r.begin(), n));
     }
+    GeodesyCells::Cursor cursor;
     for (std::size_t k = r.begin(); k != r.end(); ++k) {
       for (int i = 0; i < result_.returns[k].count; ++i) {
         returns_[first_return_[k] + static_cast<std::size_t>(i)] =
-            return_record(point_record(view, k, i, local_frame));
+            return_record(point_record(view, k, i, geodesy, cursor));
       }
     }
   });

@@ -10,12 +10,12 @@
 #include <vector>
 
 #include "engine/frame_simulator.hpp"
+#include "geometry/geodesy_cells.hpp"
 #include "io/points/point_record.hpp"
 #include "sensor/frame_view.hpp"
 #include "sensor/sensor_model.hpp"
 
 namespace owsim {
-
 
 // One detected return: the points.csv columns, in their order, as numbers. Standard layout with
 // a fixed size, the same as the C ABI's owsim_return and the Python module's structured dtype.
@@ -63,7 +63,7 @@ class Frame {
   friend class Simulation;
   // Words and return records from the simulated result_, in parallel over blocks of pulses (call
   // it inside the Simulation's task arena); the same values as one pass pulse by pulse.
-  void encode(const ScanParams& scan, const LocalFrame& local_frame);
+  void encode(const ScanParams& scan, const GeodesyCells& geodesy);
 
   SensorModel model_ = SensorModel::milows;
   FrameResult result_;

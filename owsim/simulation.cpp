@@ -132,6 +132,7 @@ struct Simulation::State {
       : options(options_in),
         source_hash(std::move(hash)),
         setup(std::move(scenario), options),
+        geodesy(setup.local_frame),
         threads(worker_count(options)),
         arena(threads),
         build_s(std::chrono::duration<double>(Clock::now() - start).count()) {}
@@ -139,6 +140,7 @@ struct Simulation::State {
   SimulationOptions options;
   std::string source_hash;  // of the scenario's text; empty for a scenario built in code
   FlightSetup setup;
+  GeodesyCells geodesy;  // places the frames' returns on WGS-84, shared by every frame
   int threads;
   mutable tbb::task_arena arena;
   // object_ids(), built on first use: a run that never asks keeps no copy of a million ids.
@@ -149,7 +151,7 @@ struct Simulation::State {
   void simulate(std::int64_t frame, const PoseSource& poses, Frame& out) const {
     arena.execute([&] {
       setup.simulator.simulate(frame, poses, out.result_);
-      out.encode(setup.scenario.scan, setup.local_frame);
+      out.encode(setup.scenario.scan, geodesy);
     });
   }
 };
@@ -235,9 +237,7 @@ void Simulation::simulate_frame(std::int64_t frame, std::span<const PoseSample> 
   state_->simulate(frame, trajectory, out);
 }
 
-void Simulation::in_arena(const std::function<void()>& work) const {
-  state_->arena.execute(work);
-}
+void Simulation::in_arena(const std::function<void()>& work) const { state_->arena.execute(work); }
 
 nlohmann::json Simulation::run_fingerprint(const RunOptions& options) const {
   if (state_->source_hash.empty()) return nullptr;

@@ -23,6 +23,7 @@
 #include "geometry/error.hpp"
 #include "geometry/geodetic_frame.hpp"
 #include "geometry/scene.hpp"
+#include "geometry/utm.hpp"
 #include "io/points/frame_points.hpp"
 #include "io/points/las_writer.hpp"
 #include "io/points/ply_writer.hpp"
@@ -137,8 +138,9 @@ class FrameEncodingTest : public ::testing::Test {
       hellas.emplace(dir / "flight.hellas");
     }
     std::vector<PointRecord> points;
+    const GeodesyCells geodesy(local_frame_, utm_grid_of(kOrigin));
     for (const SyntheticFrame& frame : frames_) {
-      frame_points(frame.view(), local_frame_, points);
+      frame_points(frame.view(), geodesy, points);
       for (const PointRecord& point : points) {
         csv.write({&point, 1});
         las.write({&point, 1});

@@ -4,8 +4,8 @@
 
 namespace owsim {
 
-PointRecord point_record(const FrameView& frame, std::size_t k, int r,
-                         const LocalFrame& local_frame) {
+PointRecord point_record(const FrameView& frame, std::size_t k, int r, const GeodesyCells& cells,
+                         GeodesyCells::Cursor& cursor) {
   const PulseReturns& returns = frame.returns[k];
   const Pulse& pulse = frame.pulses[k];
   const PulseRay& ray = frame.rays[k];
@@ -21,7 +21,9 @@ PointRecord point_record(const FrameView& frame, std::size_t k, int r,
   point.range_m = ret.range_m;
   point.counter = ret.counter;
   point.enu_m = ray.origin_enu_m + ret.range_m * ray.dir_enu;
-  point.geodetic = local_frame.geodetic_from_enu(point.enu_m);
+  const PlacedPoint placed = cells.place(point.enu_m, cursor);
+  point.geodetic = placed.geodetic;
+  point.grid_m = placed.grid_m;
   point.surface = static_cast<SurfaceClass>(ret.surface);
   point.object_index = ret.object_index;
   point.energy_rel = ret.energy_rel;
@@ -30,12 +32,13 @@ PointRecord point_record(const FrameView& frame, std::size_t k, int r,
   return point;
 }
 
-void frame_points(const FrameView& frame, const LocalFrame& local_frame,
+void frame_points(const FrameView& frame, const GeodesyCells& cells,
                   std::vector<PointRecord>& out) {
   out.clear();
+  GeodesyCells::Cursor cursor;
   for (std::size_t k = 0; k < frame.returns.size(); ++k) {
     for (int r = 0; r < frame.returns[k].count; ++r) {
-      out.push_back(point_record(frame, k, r, local_frame));
+      out.push_back(point_record(frame, k, r, cells, cursor));
     }
   }
 }

@@ -1,23 +1,24 @@
 #pragma once
 // The points of one frame: every detected return placed at its simulated range along its pulse's
 // ray (INTERFACE.md points.csv: "computed from range_m along the pulse's ray"), with its geodetic
-// position. object_index is the scene's object index (sensor/pulse_candidates.hpp: conductors,
-// cylinders, then the ground). Reuses the caller's vector, so a worker allocates nothing per frame
-// once it has grown.
+// position and, when the cells carry one, its UTM/UPS grid position (geometry/geodesy_cells.hpp:
+// within 10 nm of GeographicLib). object_index is the scene's object index
+// (sensor/pulse_candidates.hpp: conductors, cylinders, then the ground). Reuses the caller's
+// vector, so a worker allocates nothing per frame once it has grown.
 #include <vector>
 
-#include "geometry/geodetic_frame.hpp"
+#include "geometry/geodesy_cells.hpp"
 #include "io/points/point_record.hpp"
 #include "sensor/frame_view.hpp"
 
 namespace owsim {
 
-// Return r (0-based) of pulse k of `frame` as a point.
+// Return r (0-based) of pulse k of `frame` as a point; `cursor` carries the last geodesy cell from
+// one call to the next.
 [[nodiscard]] PointRecord point_record(const FrameView& frame, std::size_t k, int r,
-                                       const LocalFrame& local_frame);
+                                       const GeodesyCells& cells, GeodesyCells::Cursor& cursor);
 
 // Every return of the frame, pulse by pulse and in return order, into `out` (cleared first).
-void frame_points(const FrameView& frame, const LocalFrame& local_frame,
-                  std::vector<PointRecord>& out);
+void frame_points(const FrameView& frame, const GeodesyCells& cells, std::vector<PointRecord>& out);
 
 }  // namespace owsim

@@ -1,6 +1,5 @@
 #include "io/points/las_writer.hpp"
 
-#include <GeographicLib/UTMUPS.hpp>
 #include <algorithm>
 #include <bit>
 #include <chrono>
@@ -13,6 +12,7 @@
 #include <utility>
 
 #include "geometry/error.hpp"
+#include "geometry/exact_round.hpp"
 #include "geometry/utm.hpp"
 #include "io/files/little_endian.hpp"
 #include "io/points/utm_wkt.hpp"
@@ -50,13 +50,12 @@ void put_text(unsigned char* bytes, std::size_t offset, std::size_t size, std::s
 
 std::int32_t record_value(double coordinate_m, double offset_m, double scale_m,
                           const std::string& path, const PointRecord& point) {
-  const double steps = std::round((coordinate_m - offset_m) / scale_m);
+  const double steps = round_half_away((coordinate_m - offset_m) / scale_m);
   if (!(std::abs(steps) <= static_cast<double>(std::numeric_limits<std::int32_t>::max()))) {
-    throw input_error(path,
-                      "frame " + std::to_string(point.frame) + " pulse " +
-                          std::to_string(point.pulse) + ": coordinate " +
-                          std::to_string(coordinate_m) + " m is further than LAS int32 " +
-                          "coordinates reach from the offset " + std::to_string(offset_m) + " m");
+    throw input_error(
+        path, "frame " + std::to_string(point.frame) + " pulse " + std::to_string(point.pulse) +
+                  ": coordinate " + std::to_string(coordinate_m) + " m is further than LAS int32 " +
+                  "coordinates reach from the offset " + std::to_string(offset_m) + " m");
   }
   return static_cast<std::int32_t>(steps);
 }
@@ -66,7 +65,7 @@ std::int32_t record_value(double coordinate_m, double offset_m, double scale_m,
 std::uint16_t las_intensity(double energy_rel, double full_scale) {
   if (!(energy_rel > 0)) return 0;  // also NaN
   const double fraction = std::min(energy_rel / full_scale, 1.0);
-  return static_cast<std::uint16_t>(std::lround(fraction * 65535.0));
+  return static_cast<std::uint16_t>(round_half_away(fraction * 65535.0));
 }
 
 std::uint8_t las_classification(std::optional<SurfaceClass> surface) {
@@ -91,7 +90,7 @@ std::uint8_t las_classification(std::optional<SurfaceClass> surface) {
 std::int16_t las_scan_angle(double scan_angle_deg) {
   if (std::isnan(scan_angle_deg)) return 0;
   const double units =
-      std::clamp(std::round(scan_angle_deg / kLasScanAngleUnitDeg), -30000.0, 30000.0);
+      std::clamp(round_half_away(scan_angle_deg / kLasScanAngleUnitDeg), -30000.0, 30000.0);
   return static_cast<std::int16_t>(units);
 }
 
@@ -113,7 +112,7 @@ LasPointEncoder::LasPointEncoder(std::string file, const LasWriterOptions& optio
   }
   validate_geodetic(options.origin, file_ + ": origin");
   const UtmPoint origin = utm_from_geodetic(options.origin.lat_deg, options.origin.lon_deg);
-  grid_.zone = origin.zone;
+  grid_.zone = origin.zone;  // utm_grid_of, what frame_points' grid positions are in
   grid_.northp = origin.northp;
   grid_.scale_m = options.scale_m;
   grid_.offset_m = {std::round(origin.easting_m / kOffsetRoundingEnM) * kOffsetRoundingEnM,
@@ -218,29 +217,24 @@ void LasPointEncoder::encode_point(const PointRecord& point, LasEncodedPoints& o
   const std::string& path = file_;
   if (point.return_number < 1 || point.return_number > point.number_of_returns ||
       point.number_of_returns > kLasMaxReturns) {
-    throw input_error(path, "frame " + std::to_string(point.frame) + " pulse " +
-                                         std::to_string(point.pulse) + ": return " +
-                                         std::to_string(point.return_number) + " of " +
-                                         std::to_string(point.number_of_returns) +
-                                         " is not a LAS return number");
+    throw input_error(
+        path, "frame " + std::to_string(point.frame) + " pulse " + std::to_string(point.pulse) +
+                  ": return " + std::to_string(point.return_number) + " of " +
+                  std::to_string(point.number_of_returns) + " is not a LAS return number");
   }
-  int zone = 0;
-  bool northp = true;
-  double easting_m = 0;
-  double northing_m = 0;
-  try {
-    GeographicLib::UTMUPS::Forward(point.geodetic.lat_deg, point.geodetic.lon_deg, zone, northp,
-                                   easting_m, northing_m, grid_.zone);
-  } catch (const std::exception& error) {
-    throw input_error(path, "frame " + std::to_string(point.frame) + " pulse " +
-                                         std::to_string(point.pulse) + ": not in " +
-                                         utm_crs_name(grid_.zone, grid_.northp) + ": " +
-                                         error.what());
+  // The grid position placed with the point (frame_points), or computed here exactly.
+  Eigen::Vector2d en = point.grid_m;
+  if (!en.allFinite()) {
+    try {
+      en = grid_from_geodetic({grid_.zone, grid_.northp}, point.geodetic.lat_deg,
+                              point.geodetic.lon_deg);
+    } catch (const std::exception& error) {
+      throw input_error(path, "frame " + std::to_string(point.frame) + " pulse " +
+                                  std::to_string(point.pulse) + ": not in " +
+                                  utm_crs_name(grid_.zone, grid_.northp) + ": " + error.what());
+    }
   }
-  // One northing across the equator: the point's own hemisphere may differ from the grid's.
-  if (northp != grid_.northp) {
-    northing_m += (grid_.northp ? -1.0 : 1.0) * GeographicLib::UTMUPS::UTMShift();
-  }
+  const double easting_m = en.x(), northing_m = en.y();
   const std::array<std::int32_t, 3> record = {
       record_value(easting_m, grid_.offset_m[0], grid_.scale_m, path, point),
       record_value(northing_m, grid_.offset_m[1], grid_.scale_m, path, point),

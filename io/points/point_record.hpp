@@ -33,8 +33,11 @@ struct PointRecord {
   std::uint16_t counter = 0;                        // the range counter the word holds
   Eigen::Vector3d enu_m = Eigen::Vector3d::Zero();  // local East-North-Up from the scenario origin
   Geodetic geodetic;                                // the same point on WGS-84
-  std::optional<SurfaceClass> surface;              // std::nullopt: unknown
-  std::uint32_t object_index = kNoObject;           // into the writer's object-id table
+  // The same in the UTM/UPS grid points.las uses (easting, northing), when placed with the point
+  // (frame_points, geometry/geodesy_cells.hpp); NaN: the LAS writer computes it.
+  Eigen::Vector2d grid_m = Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN());
+  std::optional<SurfaceClass> surface;     // std::nullopt: unknown
+  std::uint32_t object_index = kNoObject;  // into the writer's object-id table
   double energy_rel = std::numeric_limits<double>::quiet_NaN();     // ξ_rx/ξ_tx; NaN: unknown
   double incidence_deg = std::numeric_limits<double>::quiet_NaN();  // NaN: unknown
   double scan_angle_deg = 0;  // mirror angle β of the pulse (LAS scan angle)

@@ -8,6 +8,7 @@
 
 #include "engine/frame_tracer.hpp"
 #include "geometry/error.hpp"
+#include "geometry/utm.hpp"
 #include "io/points/frame_points.hpp"
 #include "io/points/las_writer.hpp"
 #include "io/points/ply_writer.hpp"
@@ -94,6 +95,9 @@ DecodeReport decode_recording_points(RecordingDecoder& decoder, const RecordingS
                              fog_object_index(objects), scenario.receiver);
   const double tolerance = label_tolerance_m(scenario.receiver);
   const FrameTracer tracer(scene.embree_scene(), TraceApi::stream);
+  const GeodesyCells geodesy(
+      scene.local_frame(),
+      options.las ? std::optional(utm_grid_of(scene.local_frame().origin())) : std::nullopt);
 
   DecodeReport report;
   DecodedFrame frame;
@@ -123,9 +127,9 @@ DecodeReport decode_recording_points(RecordingDecoder& decoder, const RecordingS
       tracer.trace(rays, active, candidates);
       for (std::size_t j = 0; j < frame.size(); ++j) {
         const std::span<const Candidate> met =
-            weather.empty()
-                ? candidates[j].gather(gathered)
-                : weathered_candidates(weather, rays[j], candidates[j], scenario.receiver, weathered);
+            weather.empty() ? candidates[j].gather(gathered)
+                            : weathered_candidates(weather, rays[j], candidates[j],
+                                                   scenario.receiver, weathered);
         for (int r = 0; r < returns[j].count; ++r) {
           if (const auto match = nearest_candidate(met, returns[j].returns[r].range_m, tolerance)) {
             labels[2 * j + static_cast<std::size_t>(r)] = Label{true, *match};
@@ -135,7 +139,7 @@ DecodeReport decode_recording_points(RecordingDecoder& decoder, const RecordingS
     }
 
     const FrameView view{frame.frame, frame.sweep, frame.pulses, rays, returns};
-    frame_points(view, scene.local_frame(), points);
+    frame_points(view, geodesy, points);
     // frame_points emits the returns pulse by pulse, in return order: walk them the same way.
     std::size_t point = 0;
     for (std::size_t j = 0; j < frame.size(); ++j) {

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "geometry/error.hpp"
+#include "geometry/utm.hpp"
 #include "io/points/frame_points.hpp"
 #include "io/points/ply_writer.hpp"
 #include "io/recording/frame_words.hpp"
@@ -15,7 +16,9 @@ FrameEncoder::FrameEncoder(const std::filesystem::path& directory,
                            const ScanParams& scan, const LocalFrame& local_frame)
     : outputs_(outputs),
       scan_(scan),
-      local_frame_(&local_frame),
+      geodesy_(local_frame, outputs.contains(OutputKind::las)
+                                ? std::optional(utm_grid_of(local_frame.origin()))
+                                : std::nullopt),
       object_count_(named_object_count(scene)) {
   if (wants(OutputKind::csv)) csv_.emplace((directory / "points.csv").string(), object_ids(scene));
   if (wants(OutputKind::las)) {
@@ -104,7 +107,7 @@ void FrameEncoder::finish_encoding(const FrameView& frame, const Pose& frame_sta
       out.hellas_header_word = hellas_file_header_word(frame.sweep, frame.pulses.front().time_s);
     }
     if (wants_points()) {
-      frame_points(frame, *local_frame_, out.points);
+      frame_points(frame, geodesy_, out.points);
       out.csv_rows.clear();
       if (csv_) csv_->encode(out.points, out.csv_rows);
       if (las_) las_->encode(out.points, out.las);

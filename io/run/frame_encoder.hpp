@@ -9,6 +9,7 @@
 #include <optional>
 #include <set>
 
+#include "geometry/geodesy_cells.hpp"
 #include "geometry/geodetic_frame.hpp"
 #include "geometry/scene.hpp"
 #include "io/points/las_writer.hpp"
@@ -51,7 +52,7 @@ class FrameEncoder {
  private:
   std::set<OutputKind> outputs_;
   ScanParams scan_;
-  const LocalFrame* local_frame_;
+  GeodesyCells geodesy_;      // with the LAS grid when points.las is written
   std::size_t object_count_;  // named_object_count: FlightSummary's objects, for its tally
   std::optional<PointsCsvRows> csv_;
   std::optional<LasPointEncoder> las_;
