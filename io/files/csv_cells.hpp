@@ -1,12 +1,20 @@
 #pragma once
 // The cells of owsim's CSV files (points.csv, trajectory.csv): numbers with a fixed resolution
 // and one spelling of zero, so the bytes do not depend on the host, and RFC 4180 text cells.
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
 
 namespace owsim {
+
+// The same cells written at `out`, which must have kCsvNumberMaxChars free: each returns the end
+// of what it wrote. For rows built in a buffer (points.csv), without a std::string per number.
+inline constexpr std::size_t kCsvNumberMaxChars = 352;  // the longest double in fixed notation
+[[nodiscard]] char* write_csv_fixed(char* out, double value, int decimals);
+[[nodiscard]] char* write_csv_significant(char* out, double value, int digits);
+[[nodiscard]] char* write_csv_integer(char* out, std::int64_t value);
 
 // Appends `value` with exactly `decimals`
 // decimals ("-0.0000" becomes "0.0000"); a NaN or infinite value appends nothing (empty cell).

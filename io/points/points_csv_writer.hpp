@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "io/files/atomic_output_file.hpp"
+#include "io/files/csv_cells.hpp"
 #include "io/files/writer_checkpoint.hpp"
 #include "io/points/point_record.hpp"
 
@@ -37,14 +38,20 @@ class PointsCsvRows {
   // errors.
   PointsCsvRows(std::string file, const std::vector<std::string>& object_ids);
   // Appends the rows of `points` to `rows`. Throws owsim::Error if a record's object_index is
-  // neither kNoObject nor in the table.
+  // neither kNoObject nor in the table (`rows` is then as it was).
   void encode(std::span<const PointRecord> points, std::string& rows) const;
 
  private:
-  void append_row(const PointRecord& point, std::string& out) const;
+  // A row's characters besides the object cell, at most: 5 integers and a counter (24 each),
+  // 10 numbers (kCsvNumberMaxChars each, far more than any real value takes), class, commas.
+  static constexpr std::size_t kRowMaxChars = 6 * 24 + 10 * kCsvNumberMaxChars + 64;
+  static constexpr std::size_t kGrowth = std::size_t{1} << 18;  // rows grow 256 KiB at least
+  // Writes the row of `point` at `out`, which has kRowMaxChars + max_object_cell_ free.
+  [[nodiscard]] char* write_row(const PointRecord& point, char* out) const;
 
   std::string file_;
   std::vector<std::string> object_cells_;  // the ids, already CSV-quoted where needed
+  std::size_t max_object_cell_ = 0;
 };
 
 class PointsCsvWriter final : public PointSink {
