@@ -12,7 +12,7 @@
 namespace owsim {
 namespace {
 
-__extension__ using Uint128 = unsigned __int128;  // GCC and clang: exact 53 × 30-bit products
+__extension__ typedef unsigned __int128 Uint128;  // GCC and clang: exact 53 × 30-bit products
 
 constexpr std::array<std::uint64_t, 10> kPowersOfTen = {
     1, 10, 100, 1'000, 10'000, 100'000, 1'000'000, 10'000'000, 100'000'000, 1'000'000'000};
