@@ -271,7 +271,7 @@ TEST(FlightReport, BadFilesNameThemselvesAndLeaveNoPage) {
 namespace owsim {
 namespace {
 
-// points.las read back through the zone's inverse projection lands where points.csv puts the
+// points.las (and points.ply) read back: LAS through the zone's inverse projection lands where points.csv puts the
 // same returns in the scenario's frame: with the scenario's origin, and with the origin that
 // trajectory.csv implies (origin_of_frame).
 TEST(ReportPointsLas, LandsOnTheCsvPositions) {
@@ -280,7 +280,7 @@ TEST(ReportPointsLas, LandsOnTheCsvPositions) {
       std::filesystem::path(OWSIM_SOURCE_DIR) / "examples" / "single_span.yaml";
   const test::CliResult run =
       test::run_cli({"run", scenario.string(), "--out", (dir / "out").string(), "--frames", "12",
-                     "--outputs", "csv,las,trajectory", "--quiet"},
+                     "--outputs", "csv,las,ply,trajectory", "--quiet"},
                     dir.path());
   ASSERT_EQ(run.exit_status, 0) << run.err;
   const ReportPoints csv = read_report_points_csv(dir / "out/points.csv");
@@ -302,6 +302,16 @@ TEST(ReportPointsLas, LandsOnTheCsvPositions) {
     // LAS keeps 0.1 mm, the CSV 0.1 mm; floats hold ~0.1 mm at a kilometre.
     EXPECT_LT(worst, 0.002);
   }
+  // points.ply holds the same positions (float64) and classes.
+  const ReportPoints ply = read_report_points_ply(dir / "out/points.ply");
+  ASSERT_EQ(ply.size(), csv.size());
+  for (std::size_t i = 0; i < ply.size(); ++i) {
+    ASSERT_NEAR(ply.e_m[i], csv.e_m[i], 1e-3) << i;
+    ASSERT_NEAR(ply.u_m[i], csv.u_m[i], 1e-3) << i;
+    ASSERT_EQ(ply.surface[i], csv.surface[i]) << i;
+  }
+  std::ofstream(dir / "out/points.ply", std::ios::app) << "x";  // one byte too many
+  EXPECT_THROW((void)read_report_points_ply(dir / "out/points.ply"), Error);
 }
 
 }  // namespace

@@ -131,6 +131,20 @@ std::ifstream open_input(const std::filesystem::path& path) {
 
 }  // namespace
 
+void for_each_record(std::istream& in, std::uint64_t count, std::size_t bytes,
+                     const std::filesystem::path& path,
+                     const std::function<void(const char* record)>& each) {
+  constexpr std::uint64_t kBlock = 65536;
+  std::vector<char> block(bytes * kBlock);
+  for (std::uint64_t done = 0; done < count;) {
+    const std::uint64_t n = std::min(kBlock, count - done);
+    in.read(block.data(), static_cast<std::streamsize>(n * bytes));
+    if (!in) throw input_error(path.string(), "read error");
+    for (std::uint64_t i = 0; i < n; ++i) each(block.data() + i * bytes);
+    done += n;
+  }
+}
+
 ReportPoints read_report_points_csv(const std::filesystem::path& path) {
   ReportPoints points;
   points.source = "points.csv";
@@ -195,24 +209,13 @@ ReportPoints read_report_points_ply(const std::filesystem::path& path) {
               std::to_string(expected) + " bytes)");
   }
   points.e_m.reserve(vertices);
-  std::vector<char> block(kVertexBytes * 65536);
-  for (std::uint64_t done = 0; done < vertices;) {
-    const std::uint64_t n = std::min<std::uint64_t>(65536, vertices - done);
-    in.read(block.data(), static_cast<std::streamsize>(n * kVertexBytes));
-    if (!in) throw bad("read error");
-    for (std::uint64_t i = 0; i < n; ++i) {
-      const char* v = block.data() + i * kVertexBytes;
-      std::array<double, 3> xyz{};
-      std::memcpy(xyz.data(), v, sizeof xyz);
-      points.e_m.push_back(static_cast<float>(xyz[0]));
-      points.n_m.push_back(static_cast<float>(xyz[1]));
-      points.u_m.push_back(static_cast<float>(xyz[2]));
-      points.range_m.push_back(static_cast<float>(kNaN));
-      const auto code = static_cast<std::uint8_t>(v[28]);
-      points.surface.push_back(code < kSurfaceClassCount ? code : kUnknownSurface);
-    }
-    done += n;
-  }
+  for_each_record(in, vertices, kVertexBytes, path, [&](const char* v) {
+    std::array<double, 3> xyz{};
+    std::memcpy(xyz.data(), v, sizeof xyz);
+    const auto code = static_cast<std::uint8_t>(v[28]);
+    points.add(xyz[0], xyz[1], xyz[2], static_cast<float>(kNaN),
+               code < kSurfaceClassCount ? code : kUnknownSurface);
+  });
   return points;
 }
 

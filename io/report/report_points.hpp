@@ -7,6 +7,8 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
+#include <istream>
 #include <optional>
 #include <string>
 #include <vector>
@@ -35,7 +37,21 @@ struct ReportPoints {
   bool pulses_known = false;  // frame, line, fiber and return are filled
 
   [[nodiscard]] std::size_t size() const { return e_m.size(); }
+  // One return without its place in a frame (PLY, LAS).
+  void add(double e, double n, double u, float range, std::uint8_t surface_code) {
+    e_m.push_back(static_cast<float>(e));
+    n_m.push_back(static_cast<float>(n));
+    u_m.push_back(static_cast<float>(u));
+    range_m.push_back(range);
+    surface.push_back(surface_code);
+  }
 };
+
+// Calls each(record) for `count` records of `bytes` bytes each, read from `in` in blocks. Throws
+// owsim::Error naming `path` on a short read.
+void for_each_record(std::istream& in, std::uint64_t count, std::size_t bytes,
+                     const std::filesystem::path& path,
+                     const std::function<void(const char* record)>& each);
 
 // points.csv of INTERFACE.md, columns found by their header names (e_m, n_m, u_m required; frame,
 // line, fiber, return, time_s, range_m and class used when present). Throws owsim::Error naming

@@ -111,37 +111,28 @@ ReportPoints read_report_points_las(const std::filesystem::path& path,
   std::optional<LocalFrame> frame;
   if (origin) frame.emplace(*origin);
   in.seekg(point_offset);
-  std::vector<char> block(static_cast<std::size_t>(record_bytes) * 65536);
-  for (std::uint64_t done = 0; done < count;) {
-    const std::uint64_t n = std::min<std::uint64_t>(65536, count - done);
-    in.read(block.data(), static_cast<std::streamsize>(n * record_bytes));
-    if (!in) throw bad("read error");
-    for (std::uint64_t i = 0; i < n; ++i) {
-      const char* p = block.data() + i * record_bytes;
-      std::array<double, 3> xyz{};
-      for (std::size_t a = 0; a < 3; ++a) {
-        xyz[a] = offset[a] + scale[a] * field<std::int32_t>(p, 4 * a);
-      }
-      Eigen::Vector3d enu(xyz[0] - offset[0], xyz[1] - offset[1], xyz[2] - offset[2]);
-      if (frame) {
-        Geodetic g;
-        try {
-          GeographicLib::UTMUPS::Reverse(grid->zone, grid->northp, xyz[0], xyz[1], g.lat_deg,
-                                         g.lon_deg);
-        } catch (const std::exception& e) {
-          throw bad("point " + std::to_string(done + i) + ": " + e.what());
-        }
-        g.h_m = xyz[2];
-        enu = frame->enu_from_geodetic(g);
-      }
-      points.e_m.push_back(static_cast<float>(enu.x()));
-      points.n_m.push_back(static_cast<float>(enu.y()));
-      points.u_m.push_back(static_cast<float>(enu.z()));
-      points.range_m.push_back(std::numeric_limits<float>::quiet_NaN());
-      points.surface.push_back(surface_of_asprs(static_cast<std::uint8_t>(p[16])));
+  std::uint64_t index = 0;
+  for_each_record(in, count, record_bytes, path, [&](const char* p) {
+    std::array<double, 3> xyz{};
+    for (std::size_t a = 0; a < 3; ++a) {
+      xyz[a] = offset[a] + scale[a] * field<std::int32_t>(p, 4 * a);
     }
-    done += n;
-  }
+    Eigen::Vector3d enu(xyz[0] - offset[0], xyz[1] - offset[1], xyz[2] - offset[2]);
+    if (frame) {
+      Geodetic g;
+      try {
+        GeographicLib::UTMUPS::Reverse(grid->zone, grid->northp, xyz[0], xyz[1], g.lat_deg,
+                                       g.lon_deg);
+      } catch (const std::exception& e) {
+        throw bad("point " + std::to_string(index) + ": " + e.what());
+      }
+      g.h_m = xyz[2];
+      enu = frame->enu_from_geodetic(g);
+    }
+    points.add(enu.x(), enu.y(), enu.z(), std::numeric_limits<float>::quiet_NaN(),
+               surface_of_asprs(static_cast<std::uint8_t>(p[16])));
+    ++index;
+  });
   return points;
 }
 
