@@ -2,9 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "geometry/error.hpp"
 #include "io/report/flight_folder.hpp"
@@ -13,6 +11,7 @@
 #include "io/report/report_page.hpp"
 #include "io/report/report_points.hpp"
 #include "io/report/report_scene.hpp"
+#include "io/report/report_summary.hpp"
 #include "io/report/report_trajectory.hpp"
 #include "io/scenario/scenario_loader.hpp"
 #include "io/scenario/scene_builder.hpp"
@@ -34,35 +33,6 @@ std::string thousands(std::uint64_t n) {
     out += digits[i];
   }
   return out;
-}
-
-json read_summary(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) throw file_error(path.string(), "cannot open for reading");
-  try {
-    json summary = json::parse(in);
-    if (!summary.is_object()) throw input_error(path.string(), "not a JSON object");
-    return summary;
-  } catch (const json::exception& e) {
-    throw input_error(path.string(), std::string("not JSON: ") + e.what());
-  }
-}
-
-// The ground-truth table: objects seen first (by first-seen time), then the unseen; at most max.
-json ground_truth(json& summary, std::size_t max_objects, std::size_t& total) {
-  json objects = summary.contains("objects") && summary["objects"].is_array() ? summary["objects"]
-                                                                              : json::array();
-  summary.erase("objects");
-  total = objects.size();
-  std::vector<json> rows(objects.begin(), objects.end());
-  const auto first_seen = [](const json& o) {
-    const auto it = o.find("first_seen_s");
-    return it != o.end() && it->is_number() ? it->get<double>() : INFINITY;
-  };
-  std::stable_sort(rows.begin(), rows.end(),
-                   [&](const json& a, const json& b) { return first_seen(a) < first_seen(b); });
-  if (rows.size() > max_objects) rows.resize(max_objects);
-  return rows;
 }
 
 json trajectory_json(const ReportTrajectory& trajectory) {
@@ -175,8 +145,10 @@ FlightReport write_flight_report(const std::filesystem::path& folder_path,
   std::size_t objects_total = 0;
   meta["objects"] = json::array();
   if (folder.summary_json) {
-    summary = read_summary(*folder.summary_json);
-    meta["objects"] = ground_truth(summary, options.max_objects, objects_total);
+    ReportSummary read = read_report_summary(*folder.summary_json, options.max_objects);
+    summary = std::move(read.facts);
+    meta["objects"] = std::move(read.objects);
+    objects_total = read.objects_total;
     if (objects_total > options.max_objects) {
       notes.push_back("The ground-truth table lists the first " + thousands(options.max_objects) +
                       " of " + thousands(objects_total) + " objects by first-seen time.");

@@ -20,6 +20,7 @@
 #include "io/report/report_frames.hpp"
 #include "io/report/report_page.hpp"
 #include "io/report/report_points.hpp"
+#include "io/report/report_summary.hpp"
 #include "io/report/report_trajectory.hpp"
 #include "io/scenario/scenario_loader.hpp"
 #include "owsim/flight_report.hpp"
@@ -250,6 +251,27 @@ TEST(FlightReport, ThePageCarriesTheFolderAndSaysWhatItLeavesOut) {
   EXPECT_EQ(cloud[12] | (cloud[13] << 8), 2000);
   EXPECT_EQ(cloud[16], static_cast<int>(SurfaceClass::wire));
   EXPECT_EQ(cloud[17], static_cast<int>(SurfaceClass::ground));
+}
+
+// summary.json's objects are judged as they stream past: the first seen first, the unseen after in
+// file order, at most max_objects kept; the facts stay whole.
+TEST(ReportSummary, KeepsTheFirstSeenRowsOfAStream) {
+  const TempDir dir;
+  std::ofstream(dir / "summary.json")
+      << R"({"frames": 7, "objects_by_class": {"tree": {"objects": 4}}, "objects": [)"
+         R"({"id": "u1", "first_seen_s": null}, {"id": "s2", "first_seen_s": 5.0},)"
+         R"({"id": "u3"}, {"id": "s4", "first_seen_s": 1.0}], "version": "x"})";
+  const ReportSummary three = read_report_summary(dir / "summary.json", 3);
+  EXPECT_EQ(three.objects_total, 4u);
+  ASSERT_EQ(three.objects.size(), 3u);
+  EXPECT_EQ(three.objects[0]["id"], "s4");
+  EXPECT_EQ(three.objects[1]["id"], "s2");
+  EXPECT_EQ(three.objects[2]["id"], "u1");
+  EXPECT_EQ(three.facts["frames"], 7);
+  EXPECT_EQ(three.facts["objects_by_class"]["tree"]["objects"], 4);
+  EXPECT_EQ(three.facts["version"], "x");
+  EXPECT_FALSE(three.facts.contains("objects"));
+  EXPECT_EQ(read_report_summary(dir / "summary.json", 0).objects.size(), 0u);
 }
 
 TEST(FlightReport, BadFilesNameThemselvesAndLeaveNoPage) {
