@@ -81,14 +81,18 @@ json frames_json(const ReportFrames& frames, const RangeImageLayout& layout,
           {"beta_last_deg", layout.beta_last_deg}};
 }
 
+// A class slot of ReportCloud: the class's name, "unknown" for the last.
+std::string class_slot_name(std::size_t slot) {
+  return slot < kSurfaceClassCount ? std::string(to_string(static_cast<SurfaceClass>(slot)))
+                                   : std::string("unknown");
+}
+
 json cloud_json(const ReportCloud& cloud, const std::string& source) {
   json by_class = json::object();
   for (std::size_t slot = 0; slot < kCloudClassSlots; ++slot) {
     if (cloud.total_by_class[slot] == 0) continue;
-    const std::string name = slot < kSurfaceClassCount
-                                 ? std::string(to_string(static_cast<SurfaceClass>(slot)))
-                                 : std::string("unknown");
-    by_class[name] = {{"total", cloud.total_by_class[slot]}, {"shown", cloud.shown_by_class[slot]}};
+    by_class[class_slot_name(slot)] = {{"total", cloud.total_by_class[slot]},
+                                       {"shown", cloud.shown_by_class[slot]}};
   }
   return {{"source", source},         {"total", cloud.total},     {"shown", cloud.shown()},
           {"box_min", cloud.box_min}, {"box_max", cloud.box_max}, {"by_class", by_class}};
@@ -113,9 +117,8 @@ std::string thinning_note(const ReportCloud& cloud) {
   for (std::size_t slot = 0; slot < kCloudClassSlots; ++slot) {
     const std::uint64_t total = cloud.total_by_class[slot], shown = cloud.shown_by_class[slot];
     if (total == 0) continue;
-    note += slot == 0 ? " " : " ";
-    note += slot < kSurfaceClassCount ? std::string(to_string(static_cast<SurfaceClass>(slot)))
-                                      : std::string("unknown");
+    note += ' ';
+    note += class_slot_name(slot);
     note += shown == total
                 ? " all;"
                 : " 1 in " +

@@ -293,9 +293,9 @@ TEST(FlightReport, BadFilesNameThemselvesAndLeaveNoPage) {
 namespace owsim {
 namespace {
 
-// points.las (and points.ply) read back: LAS through the zone's inverse projection lands where points.csv puts the
-// same returns in the scenario's frame: with the scenario's origin, and with the origin that
-// trajectory.csv implies (origin_of_frame).
+// points.las (and points.ply) read back: LAS through the zone's inverse projection lands where
+// points.csv puts the same returns in the scenario's frame: with the scenario's origin, and with
+// the origin that trajectory.csv implies (origin_of_frame).
 TEST(ReportPointsLas, LandsOnTheCsvPositions) {
   const TempDir dir;
   const std::filesystem::path scenario =
