@@ -15,8 +15,11 @@
 #include "io/report/report_trajectory.hpp"
 #include "io/scenario/scenario_loader.hpp"
 #include "io/scenario/scene_builder.hpp"
+#include "io/trajectory/trajectory_loader.hpp"
 #include "owsim/version.hpp"
 #include "sensor/range_counter.hpp"
+#include "sensor/scan_pattern.hpp"
+#include "sensor/trajectory.hpp"
 
 namespace owsim {
 namespace {
@@ -25,6 +28,7 @@ using nlohmann::json;
 
 constexpr std::size_t kMaxCylinders = 20'000;
 constexpr std::size_t kMaxTrajectoryRows = 20'000;
+constexpr std::size_t kMaxScenarioFrames = 1'000'000;  // ~4 days of frames: a bound, not a limit
 
 std::string thousands(std::uint64_t n) {
   std::string digits = std::to_string(n), out;
@@ -79,6 +83,24 @@ json frames_json(const ReportFrames& frames, const RangeImageLayout& layout,
           {"row_alpha_deg", std::move(alpha)},
           {"beta_first_deg", layout.beta_first_deg},
           {"beta_last_deg", layout.beta_last_deg}};
+}
+
+// trajectory.csv as a run of the scenario writes it: the pose at every frame start within the
+// trajectory.
+ReportTrajectory scenario_trajectory(const Scenario& scenario) {
+  const LocalFrame frame(scenario.origin);
+  const Trajectory flown = load_trajectory(scenario, frame);
+  ReportTrajectory out;
+  for (std::int64_t k = 0;; ++k) {
+    const double t = pulse_time_s(scenario.scan, k, 0);
+    if (t > flown.end_s() || out.rows.size() >= kMaxScenarioFrames) break;
+    const Pose pose = flown.pose_at(t);
+    const Geodetic g = frame.geodetic_from_enu(pose.position_enu_m);
+    const Eigen::Vector3d& p = pose.position_enu_m;
+    out.rows.push_back({t, g.lat_deg, g.lon_deg, g.h_m, p.x(), p.y(), p.z(), pose.attitude.roll_deg,
+                        pose.attitude.pitch_deg, pose.attitude.heading_deg});
+  }
+  return out;
 }
 
 // A class slot of ReportCloud: the class's name, "unknown" for the last.
@@ -171,8 +193,9 @@ FlightReport write_flight_report(const std::filesystem::path& folder_path,
   if (folder.hellas_words) scan.model = SensorModel::hellas;
   meta["scene"] = nullptr;
   std::optional<Geodetic> scenario_origin;
+  std::optional<Scenario> scenario_read;
   if (options.scenario) {
-    const Scenario scenario = load_scenario(*options.scenario);
+    const Scenario& scenario = scenario_read.emplace(load_scenario(*options.scenario));
     scan = scenario.scan;
     scenario_origin = scenario.origin;
     const Scene scene = build_scene(scenario);
@@ -194,10 +217,18 @@ FlightReport write_flight_report(const std::filesystem::path& folder_path,
   meta["trajectory"] = nullptr;
   if (folder.trajectory_csv) {
     trajectory = read_report_trajectory(*folder.trajectory_csv);
-    meta["trajectory"] = trajectory_json(*trajectory);
+  } else if (scenario_read) {
+    trajectory = scenario_trajectory(*scenario_read);
+    notes.push_back(
+        "No trajectory.csv in this folder (a decoded recording?): the flight path and "
+        "poses are the scenario's trajectory at each frame start (a decode's "
+        "--trajectory file is not known here).");
   } else {
-    notes.push_back("No trajectory.csv in this folder: no flight path and no poses.");
+    notes.push_back(
+        "No trajectory.csv in this folder: no flight path and no poses (--scenario "
+        "gives the scenario's).");
   }
+  if (trajectory) meta["trajectory"] = trajectory_json(*trajectory);
 
   ReportPoints points;
   if (folder.points_csv) {

@@ -334,6 +334,27 @@ TEST(ReportPointsLas, LandsOnTheCsvPositions) {
   }
   std::ofstream(dir / "out/points.ply", std::ios::app) << "x";  // one byte too many
   EXPECT_THROW((void)read_report_points_ply(dir / "out/points.ply"), Error);
+
+  // Without trajectory.csv (a decode folder) the page takes the poses from the scenario's
+  // trajectory at each frame start: the run's own trajectory.csv rows, to its printed decimals.
+  std::filesystem::rename(dir / "out/trajectory.csv", dir / "trajectory.csv");
+  std::filesystem::remove(dir / "out/points.ply");
+  FlightReportOptions options;
+  options.scenario = scenario;
+  const FlightReport page = write_flight_report(dir / "out", options);
+  const nlohmann::json meta =
+      nlohmann::json::parse(element(test::read_whole_file(page.file), "owsim-meta"));
+  const ReportTrajectory written = read_report_trajectory(dir / "trajectory.csv");
+  ASSERT_EQ(meta["frames"]["pose"].size(), 12u);
+  for (std::size_t k = 0; k < 12; ++k) {
+    const nlohmann::json& pose = meta["frames"]["pose"][k];
+    const TrajectoryRow& row = written.rows[k];
+    EXPECT_NEAR(pose[0].get<double>(), row.e_m, 1e-4) << k;
+    EXPECT_NEAR(pose[1].get<double>(), row.n_m, 1e-4) << k;
+    EXPECT_NEAR(pose[2].get<double>(), row.u_m, 1e-4) << k;
+    EXPECT_NEAR(pose[5].get<double>(), row.heading_deg, 1e-4) << k;
+    EXPECT_NEAR(meta["frames"]["time_s"][k].get<double>(), row.time_s, 1e-9) << k;
+  }
 }
 
 }  // namespace
