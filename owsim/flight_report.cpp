@@ -150,155 +150,191 @@ std::string thinning_note(const ReportCloud& cloud) {
   return note;
 }
 
+// The page's parts, read and laid out one after the other: each step adds its part of the meta
+// JSON and a note for whatever the folder lacks.
+class PageAssembly {
+ public:
+  PageAssembly(const FlightFolder& folder, const FlightReportOptions& options)
+      : folder_(folder), options_(options) {
+    report_.file = options.out.empty() ? folder.directory / "report.html" : options.out;
+    meta_["generator"] = std::string("owsim ") + version_string;
+    meta_["folder"] = std::filesystem::absolute(folder.directory).lexically_normal().string();
+    title_ = folder.directory.filename().string();
+    if (folder.hellas_words) scan_.model = SensorModel::hellas;
+  }
+
+  void add_summary() {
+    meta_["summary"] = nullptr;
+    meta_["objects"] = json::array();
+    meta_["objects_total"] = 0;
+    if (!folder_.summary_json) {
+      note(
+          "No summary.json in this folder (a decoded recording?): no run summary and no ground "
+          "truth.");
+      return;
+    }
+    ReportSummary read = read_report_summary(*folder_.summary_json, options_.max_objects);
+    if (read.objects_total > options_.max_objects) {
+      note("The ground-truth table lists the first " + thousands(options_.max_objects) + " of " +
+           thousands(read.objects_total) + " objects by first-seen time.");
+    }
+    const auto scenario = read.facts.find("scenario");
+    if (scenario != read.facts.end() && scenario->is_string())
+      title_ = scenario->get<std::string>();
+    const auto frames = read.facts.find("frames");
+    if (frames != read.facts.end() && frames->is_number_integer()) {
+      frames_hint_ = frames->get<std::int64_t>();
+    }
+    meta_["summary"] = std::move(read.facts);
+    meta_["objects"] = std::move(read.objects);
+    meta_["objects_total"] = read.objects_total;
+  }
+
+  void add_scene() {
+    meta_["scene"] = nullptr;
+    if (!options_.scenario) {
+      note(
+          "Scene objects (wires, poles, trees, meshes) are drawn when owsim view is given the "
+          "flight's scenario: --scenario FILE.");
+    } else {
+      const Scenario& scenario = scenario_.emplace(load_scenario(*options_.scenario));
+      scan_ = scenario.scan;
+      const Scene scene = build_scene(scenario);
+      meta_["scene"] = report_scene_json(scene, kMaxCylinders);
+      meta_["scenario_file"] = options_.scenario->string();
+      if (scene.cylinders.size() > kMaxCylinders) {
+        note("Poles and trees: " + thousands(kMaxCylinders) + " of " +
+             thousands(scene.cylinders.size()) + " drawn, evenly chosen.");
+      }
+    }
+    meta_["sensor"] = {{"model", scan_.model == SensorModel::hellas ? "HELLAS" : "MilOWS"},
+                       {"timeout_range_m", timeout_range_m(scan_.counter)}};
+  }
+
+  void add_trajectory() {
+    meta_["trajectory"] = nullptr;
+    if (folder_.trajectory_csv) {
+      trajectory_ = read_report_trajectory(*folder_.trajectory_csv);
+    } else if (scenario_) {
+      trajectory_ = scenario_trajectory(*scenario_);
+      note(
+          "No trajectory.csv in this folder (a decoded recording?): the flight path and poses "
+          "are the scenario's trajectory at each frame start (a decode's --trajectory file is "
+          "not known here).");
+    } else {
+      note(
+          "No trajectory.csv in this folder: no flight path and no poses (--scenario gives the "
+          "scenario's).");
+    }
+    if (trajectory_) meta_["trajectory"] = trajectory_json(*trajectory_);
+  }
+
+  void read_points() {
+    if (folder_.points_csv) {
+      points_ = read_report_points_csv(*folder_.points_csv);
+    } else if (folder_.points_ply) {
+      points_ = read_report_points_ply(*folder_.points_ply);
+    } else if (folder_.points_las) {
+      points_ = read_report_points_las(*folder_.points_las, las_origin());
+    } else {
+      note(
+          "No point file in this folder (the run wrote words only?): no returns to show. owsim "
+          "decode, or a run with --outputs points, writes them.");
+      return;
+    }
+    if (points_.size() == 0) note("The flight has no returns: the sensor saw nothing.");
+  }
+
+  void add_frames() {
+    meta_["frames"] = nullptr;
+    if (!points_.pulses_known) {
+      if (points_.size() > 0) {
+        note(
+            "The frame player needs points.csv (frame, line and fiber of each return); this "
+            "folder has " +
+            points_.source + " only.");
+      }
+      return;
+    }
+    const RangeImageLayout layout = range_image_layout(scan_);
+    const ReportFrames frames = report_frames(points_, layout, frames_hint_, options_.max_frames);
+    report_.frames_total = frames.frames_total;
+    report_.frames_shown = static_cast<std::int64_t>(frames.frames.size());
+    if (report_.frames_shown < report_.frames_total) {
+      note("The frame player holds " + thousands(report_.frames_shown) + " of " +
+           thousands(report_.frames_total) + " frames, evenly spread (--max-frames).");
+    }
+    if (frames.returns_outside > 0) {
+      note(thousands(frames.returns_outside) +
+           " returns name a line or fiber outside the sensor's frame and are left out of the "
+           "range images.");
+    }
+    meta_["frames"] = frames_json(frames, layout, trajectory_, points_);
+    frames_blob_ = deflate_base64(frames.planes);
+  }
+
+  void add_cloud() {
+    const ReportCloud cloud = report_cloud(points_, options_.max_points);
+    report_.points_total = cloud.total;
+    report_.points_shown = cloud.shown();
+    if (cloud.shown() < cloud.total) note(thinning_note(cloud));
+    meta_["cloud"] = cloud_json(cloud, points_.source);
+    cloud_blob_ = deflate_base64(cloud_bytes(cloud));
+  }
+
+  FlightReport write() {
+    meta_["title"] = title_;
+    meta_["notes"] = report_.notes;
+    report_.bytes = write_report_page(report_.file, "owsim — " + title_, meta_.dump(), frames_blob_,
+                                      cloud_blob_);
+    return std::move(report_);
+  }
+
+ private:
+  void note(std::string text) { report_.notes.push_back(std::move(text)); }
+
+  // LAS holds UTM: the scenario's origin, or the one trajectory.csv implies, brings it home.
+  std::optional<Geodetic> las_origin() {
+    if (scenario_) return scenario_->origin;
+    if (trajectory_ && !trajectory_->rows.empty()) {
+      const TrajectoryRow& row = trajectory_->rows.front();
+      return origin_of_frame({row.lat_deg, row.lon_deg, row.h_m}, {row.e_m, row.n_m, row.u_m});
+    }
+    note(
+        "points.las is shown in its own grid (easting, northing and height less the file's "
+        "offsets): without trajectory.csv or --scenario there is no scenario origin to place "
+        "it.");
+    return std::nullopt;
+  }
+
+  const FlightFolder& folder_;
+  const FlightReportOptions& options_;
+  FlightReport report_;
+  json meta_ = json::object();
+  std::string title_;
+  ScanParams scan_;
+  std::optional<Scenario> scenario_;
+  std::optional<ReportTrajectory> trajectory_;
+  std::int64_t frames_hint_ = 0;  // summary.json's frame count
+  ReportPoints points_;
+  std::string frames_blob_, cloud_blob_;
+};
+
 }  // namespace
 
-FlightReport write_flight_report(const std::filesystem::path& folder_path,
+FlightReport write_flight_report(const std::filesystem::path& folder,
                                  const FlightReportOptions& options) {
   if (options.max_frames < 1) throw input_error("--max-frames", "must be at least 1");
   if (options.max_points < 1) throw input_error("--max-points", "must be at least 1");
-  const FlightFolder folder = find_flight_folder(folder_path);
-  FlightReport report;
-  report.file = options.out.empty() ? folder.directory / "report.html" : options.out;
-  std::vector<std::string>& notes = report.notes;
-
-  json meta = json::object();
-  meta["generator"] = std::string("owsim ") + version_string;
-  meta["folder"] = std::filesystem::absolute(folder.directory).lexically_normal().string();
-  std::string title = folder.directory.filename().string();
-
-  json summary = nullptr;
-  std::size_t objects_total = 0;
-  meta["objects"] = json::array();
-  if (folder.summary_json) {
-    ReportSummary read = read_report_summary(*folder.summary_json, options.max_objects);
-    summary = std::move(read.facts);
-    meta["objects"] = std::move(read.objects);
-    objects_total = read.objects_total;
-    if (objects_total > options.max_objects) {
-      notes.push_back("The ground-truth table lists the first " + thousands(options.max_objects) +
-                      " of " + thousands(objects_total) + " objects by first-seen time.");
-    }
-    if (summary.contains("scenario") && summary["scenario"].is_string()) {
-      title = summary["scenario"].get<std::string>();
-    }
-  } else {
-    notes.push_back(
-        "No summary.json in this folder (a decoded recording?): no run summary and "
-        "no ground truth.");
-  }
-  meta["summary"] = summary;
-  meta["objects_total"] = objects_total;
-
-  ScanParams scan;
-  if (folder.hellas_words) scan.model = SensorModel::hellas;
-  meta["scene"] = nullptr;
-  std::optional<Geodetic> scenario_origin;
-  std::optional<Scenario> scenario_read;
-  if (options.scenario) {
-    const Scenario& scenario = scenario_read.emplace(load_scenario(*options.scenario));
-    scan = scenario.scan;
-    scenario_origin = scenario.origin;
-    const Scene scene = build_scene(scenario);
-    meta["scene"] = report_scene_json(scene, kMaxCylinders);
-    meta["scenario_file"] = options.scenario->string();
-    if (scene.cylinders.size() > kMaxCylinders) {
-      notes.push_back("Poles and trees: " + thousands(kMaxCylinders) + " of " +
-                      thousands(scene.cylinders.size()) + " drawn, evenly chosen.");
-    }
-  } else {
-    notes.push_back(
-        "Scene objects (wires, poles, trees, meshes) are drawn when owsim view is "
-        "given the flight's scenario: --scenario FILE.");
-  }
-  meta["sensor"] = {{"model", scan.model == SensorModel::hellas ? "HELLAS" : "MilOWS"},
-                    {"timeout_range_m", timeout_range_m(scan.counter)}};
-
-  std::optional<ReportTrajectory> trajectory;
-  meta["trajectory"] = nullptr;
-  if (folder.trajectory_csv) {
-    trajectory = read_report_trajectory(*folder.trajectory_csv);
-  } else if (scenario_read) {
-    trajectory = scenario_trajectory(*scenario_read);
-    notes.push_back(
-        "No trajectory.csv in this folder (a decoded recording?): the flight path and "
-        "poses are the scenario's trajectory at each frame start (a decode's "
-        "--trajectory file is not known here).");
-  } else {
-    notes.push_back(
-        "No trajectory.csv in this folder: no flight path and no poses (--scenario "
-        "gives the scenario's).");
-  }
-  if (trajectory) meta["trajectory"] = trajectory_json(*trajectory);
-
-  ReportPoints points;
-  if (folder.points_csv) {
-    points = read_report_points_csv(*folder.points_csv);
-  } else if (folder.points_ply) {
-    points = read_report_points_ply(*folder.points_ply);
-  } else if (folder.points_las) {
-    // LAS holds UTM: the scenario's origin, or the one trajectory.csv implies, brings it home.
-    std::optional<Geodetic> origin = scenario_origin;
-    if (!origin && trajectory && !trajectory->rows.empty()) {
-      const TrajectoryRow& row = trajectory->rows.front();
-      origin = origin_of_frame({row.lat_deg, row.lon_deg, row.h_m}, {row.e_m, row.n_m, row.u_m});
-    }
-    if (!origin) {
-      notes.push_back(
-          "points.las is shown in its own grid (easting, northing and height less "
-          "the file's offsets): without trajectory.csv or --scenario there is no "
-          "scenario origin to place it.");
-    }
-    points = read_report_points_las(*folder.points_las, origin);
-  } else {
-    notes.push_back(
-        "No point file in this folder (the run wrote words only?): no returns to "
-        "show. owsim decode, or a run with --outputs points, writes them.");
-  }
-  if ((folder.points_csv || folder.points_ply || folder.points_las) && points.size() == 0) {
-    notes.push_back("The flight has no returns: the sensor saw nothing.");
-  }
-
-  std::string frames_blob;
-  meta["frames"] = nullptr;
-  if (points.pulses_known) {
-    const RangeImageLayout layout = range_image_layout(scan);
-    const std::int64_t hint =
-        summary.is_object() && summary.contains("frames") && summary["frames"].is_number_integer()
-            ? summary["frames"].get<std::int64_t>()
-            : 0;
-    const ReportFrames frames = report_frames(points, layout, hint, options.max_frames);
-    report.frames_total = frames.frames_total;
-    report.frames_shown = static_cast<std::int64_t>(frames.frames.size());
-    if (report.frames_shown < report.frames_total) {
-      notes.push_back("The frame player holds " + thousands(report.frames_shown) + " of " +
-                      thousands(report.frames_total) + " frames, evenly spread (--max-frames).");
-    }
-    if (frames.returns_outside > 0) {
-      notes.push_back(thousands(frames.returns_outside) +
-                      " returns name a line or fiber outside the sensor's frame and are left out "
-                      "of the range images.");
-    }
-    meta["frames"] = frames_json(frames, layout, trajectory, points);
-    frames_blob = deflate_base64(frames.planes);
-  } else if (points.size() > 0) {
-    notes.push_back(
-        "The frame player needs points.csv (frame, line and fiber of each return); "
-        "this folder has " +
-        points.source + " only.");
-  }
-
-  const ReportCloud cloud = report_cloud(points, options.max_points);
-  report.points_total = cloud.total;
-  report.points_shown = cloud.shown();
-  if (cloud.shown() < cloud.total) notes.push_back(thinning_note(cloud));
-  meta["cloud"] = cloud_json(cloud, points.source);
-  const std::string cloud_blob = deflate_base64(cloud_bytes(cloud));
-
-  meta["title"] = title;
-  meta["notes"] = notes;
-  report.bytes =
-      write_report_page(report.file, "owsim — " + title, meta.dump(), frames_blob, cloud_blob);
-  return report;
+  const FlightFolder found = find_flight_folder(folder);
+  PageAssembly page(found, options);
+  page.add_summary();
+  page.add_scene();
+  page.add_trajectory();
+  page.read_points();
+  page.add_frames();
+  page.add_cloud();
+  return page.write();
 }
 
 }  // namespace owsim
