@@ -103,14 +103,21 @@ T none(const char* function, T value) {
   return value;
 }
 
+// A caller's options struct must be at least this version's size (struct_size, set by the
+// *_options_default() it came from).
+template <typename Options>
+void require_struct_size(const Options& options, const char* default_function) {
+  if (options.struct_size < sizeof(Options)) {
+    throw ArgumentError{"options->struct_size is " + std::to_string(options.struct_size) +
+                        ", expected " + std::to_string(sizeof(Options)) + " (start from " +
+                        default_function + "())"};
+  }
+}
+
 owsim::SimulationOptions simulation_options(const owsim_simulation_options* options) {
   owsim::SimulationOptions out;
   if (options == nullptr) return out;
-  if (options->struct_size < sizeof(owsim_simulation_options)) {
-    throw ArgumentError{"options->struct_size is " + std::to_string(options->struct_size) +
-                        ", expected " + std::to_string(sizeof(owsim_simulation_options)) +
-                        " (start from owsim_simulation_options_default())"};
-  }
+  require_struct_size(*options, "owsim_simulation_options_default");
   if (options->threads < 0) throw ArgumentError{"options->threads must be ≥ 0"};
   if (options->frames < 0) throw ArgumentError{"options->frames must be ≥ 0"};
   if (!(options->duration_s >= 0)) throw ArgumentError{"options->duration_s must be ≥ 0"};
@@ -341,11 +348,7 @@ owsim_status owsim_simulation_run(const owsim_simulation* simulation,
     require(simulation, "simulation");
     owsim::RunOptions run;
     if (options != nullptr) {
-      if (options->struct_size < sizeof(owsim_run_options)) {
-        throw ArgumentError{"options->struct_size is " + std::to_string(options->struct_size) +
-                            ", expected " + std::to_string(sizeof(owsim_run_options)) +
-                            " (start from owsim_run_options_default())"};
-      }
+      require_struct_size(*options, "owsim_run_options_default");
       if (options->out_dir != nullptr) run.out = options->out_dir;
       if (options->outputs != nullptr) run.outputs = owsim::parse_output_list(options->outputs);
       run.resume = options->resume != 0;
@@ -376,11 +379,7 @@ owsim_status owsim_view(const char* folder, const owsim_view_options* options,
     require(folder, "folder");
     owsim::FlightReportOptions view;
     if (options != nullptr) {
-      if (options->struct_size < sizeof(owsim_view_options)) {
-        throw ArgumentError{"options->struct_size is " + std::to_string(options->struct_size) +
-                            ", expected " + std::to_string(sizeof(owsim_view_options)) +
-                            " (start from owsim_view_options_default())"};
-      }
+      require_struct_size(*options, "owsim_view_options_default");
       if (options->out_file != nullptr) view.out = options->out_file;
       if (options->scenario_path != nullptr) view.scenario = options->scenario_path;
       view.max_points = options->max_points;

@@ -122,6 +122,22 @@ TEST(CApi, NullHandlesAndBadArgumentsGiveStatusCodes) {
   options.struct_size = 4;
   owsim_simulation* other = nullptr;
   EXPECT_EQ(owsim_simulation_open_with("x.yaml", &options, &other), OWSIM_ERROR_ARGUMENT);
+  EXPECT_NE(std::string(owsim_last_error())
+                .find("struct_size is 4, expected " +
+                      std::to_string(sizeof(owsim_simulation_options)) +
+                      " (start from owsim_simulation_options_default())"),
+            std::string::npos)
+      << owsim_last_error();
+  owsim_run_options run = owsim_run_options_default();
+  run.struct_size = 4;
+  EXPECT_EQ(owsim_simulation_run(simulation, &run, nullptr), OWSIM_ERROR_ARGUMENT);
+  EXPECT_NE(std::string(owsim_last_error()).find("(start from owsim_run_options_default())"),
+            std::string::npos);
+  owsim_view_options view = owsim_view_options_default();
+  view.struct_size = 4;
+  EXPECT_EQ(owsim_view(".", &view, nullptr), OWSIM_ERROR_ARGUMENT);
+  EXPECT_NE(std::string(owsim_last_error()).find("(start from owsim_view_options_default())"),
+            std::string::npos);
   owsim_simulation_release(simulation);
 }
 
