@@ -27,18 +27,20 @@ constexpr double kDepthMarginAbsolute_m = 1e-3;
 // pulse's solid hit is never offered: the conductor's candidate is its strongest visible segment,
 // whatever order Embree visits the segments in.
 void conductor_filter(const RTCFilterFunctionNArguments* args) {
-  const auto* binding = static_cast<const ConductorBinding*>(args->geometryUserPtr);
+  const auto* wires = static_cast<const WireSegments*>(args->geometryUserPtr);
   const TraceContext* context = trace_context(args->context);
   const ReceiverParams& receiver = context->scene->receiver();
   for (unsigned i = 0; i < args->N; ++i) {
     if (args->valid[i] == 0) continue;
     args->valid[i] = 0;
     const unsigned id = RTCRayN_id(args->ray, args->N, i);
-    const unsigned segment = RTCHitN_primID(args->hit, args->N, i);
+    const unsigned prim = RTCHitN_primID(args->hit, args->N, i);
+    const std::uint32_t conductor = wires->conductor_of[prim];
+    const std::size_t segment = prim - wires->first_segment[conductor];
     PulseCandidates& pulse = context->candidates[id];
     Candidate candidate;
-    if (wire_segment_candidate(context->rays[id], *binding->conductor, segment, binding->object,
-                               receiver, candidate) &&
+    if (wire_segment_candidate(context->rays[id], wires->conductors[conductor], segment,
+                               conductor, receiver, candidate) &&
         candidate.range_m <= context->max_range_m &&
         (!pulse.has_solid() || candidate.range_m < pulse.solid().range_m)) {
       pulse.offer_wire(candidate);
@@ -122,8 +124,7 @@ EmbreeScene::EmbreeScene(const EmbreeDevice& device, const Scene& scene,
   }
   solids_ = new_scene(device);
   wires_ = new_scene(device);
-  bindings_.reserve(scene.conductors.size());
-  for (std::size_t i = 0; i < scene.conductors.size(); ++i) attach_conductor(device, i);
+  if (!scene.conductors.empty()) attach_conductors(device);
   for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
     if (attach_triangles(device, scene.meshes[m].mesh, "adding a mesh") != m) {
       throw Error("engine: unexpected mesh geometry id");
@@ -154,32 +155,49 @@ float EmbreeScene::wire_search_end(double solid_range_m) {
   return std::nextafter(static_cast<float>(end), INFINITY);
 }
 
-void EmbreeScene::attach_conductor(const EmbreeDevice& device, std::size_t index) {
-  const Conductor& conductor = scene().conductors[index];
+void EmbreeScene::attach_conductors(const EmbreeDevice& device) {
+  const std::vector<Conductor>& conductors = scene().conductors;
+  wire_segments_.conductors = conductors;
+  std::size_t points = 0;
+  std::size_t segments = 0;
+  for (const Conductor& conductor : conductors) {
+    points += conductor.points_enu_m.size();
+    segments += conductor.points_enu_m.size() - 1;
+  }
+  if (points > std::numeric_limits<unsigned>::max()) {
+    throw Error("engine: more conductor points than Embree can index");
+  }
   RTCGeometry geometry = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_FLAT_LINEAR_CURVE);
-  const std::size_t points = conductor.points_enu_m.size();
   auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
       geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), points));
-  const auto radius = static_cast<float>(capture_radius_m(conductor));
-  for (std::size_t p = 0; p < points; ++p) {
-    const Eigen::Vector3d& point = conductor.points_enu_m[p];
-    vertices[4 * p + 0] = static_cast<float>(point.x());
-    vertices[4 * p + 1] = static_cast<float>(point.y());
-    vertices[4 * p + 2] = static_cast<float>(point.z());
-    vertices[4 * p + 3] = radius;
+  auto* starts = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+      geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT, sizeof(unsigned), segments));
+  wire_segments_.conductor_of.resize(segments);
+  wire_segments_.first_segment.resize(conductors.size());
+  std::size_t vertex = 0;
+  std::size_t segment = 0;
+  for (std::size_t c = 0; c < conductors.size(); ++c) {
+    const Conductor& conductor = conductors[c];
+    const auto radius = static_cast<float>(capture_radius_m(conductor));
+    wire_segments_.first_segment[c] = static_cast<std::uint32_t>(segment);
+    for (std::size_t p = 0; p < conductor.points_enu_m.size(); ++p, ++vertex) {
+      const Eigen::Vector3d& point = conductor.points_enu_m[p];
+      vertices[4 * vertex + 0] = static_cast<float>(point.x());
+      vertices[4 * vertex + 1] = static_cast<float>(point.y());
+      vertices[4 * vertex + 2] = static_cast<float>(point.z());
+      vertices[4 * vertex + 3] = radius;
+      if (p + 1 == conductor.points_enu_m.size()) continue;
+      starts[segment] = static_cast<unsigned>(vertex);
+      wire_segments_.conductor_of[segment] = static_cast<std::uint32_t>(c);
+      ++segment;
+    }
   }
-  auto* segments = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-      geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT, sizeof(unsigned), points - 1));
-  for (std::size_t s = 0; s + 1 < points; ++s) segments[s] = static_cast<unsigned>(s);
-  // bindings_ was reserved for every conductor, so this pointer stays valid.
-  bindings_.push_back(ConductorBinding{&conductor, static_cast<std::uint32_t>(index)});
-  rtcSetGeometryUserData(geometry, &bindings_.back());
+  rtcSetGeometryUserData(geometry, &wire_segments_);
   rtcSetGeometryIntersectFilterFunction(geometry, conductor_filter);
   rtcCommitGeometry(geometry);
-  const unsigned geom_id = rtcAttachGeometry(wires_, geometry);
+  rtcAttachGeometry(wires_, geometry);
   rtcReleaseGeometry(geometry);
-  if (geom_id != index) throw Error("engine: unexpected conductor geometry id");
-  device.check("adding a conductor");
+  device.check("adding the conductors");
 }
 
 void EmbreeScene::attach_cylinders(const EmbreeDevice& device) {

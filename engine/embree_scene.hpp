@@ -6,8 +6,10 @@
 //     cylinders  — one USER geometry (poles and trees), intersected in double precision;
 //     terrain    — one triangle mesh over the region the sensor can reach;
 //     a triangle hit is re-intersected in double (engine/frame_tracer.cpp);
-//   wires   — conductors, one FLAT_LINEAR_CURVE geometry each, its radius the *capture radius*
-//             r_wire + r_beam(max range) (plus a float-safety margin). Embree tests a flat linear
+//   wires   — every conductor's segments in one FLAT_LINEAR_CURVE geometry (one Embree object
+//             and vertex buffer however many conductors: 35,000 geometries cost a 5,000-span
+//             grid 20 MB), its radius the *capture radius* r_wire + r_beam(max range) of the
+//             segment's conductor (plus a float-safety margin). Embree tests a flat linear
 //             segment in the plane across the ray: a hit is exactly "the ray passes within the
 //             radius of the segment" (its end points included), reported once, at the depth of
 //             the segment's nearest point. So every pulse whose beam can touch the wire reaches
@@ -21,6 +23,7 @@
 #include <embree3/rtcore.h>
 
 #include <Eigen/Geometry>
+#include <span>
 #include <vector>
 
 #include "engine/embree_device.hpp"
@@ -30,10 +33,13 @@
 
 namespace owsim {
 
-// What a conductor's intersection filter is handed as its geometry user data.
-struct ConductorBinding {
-  const Conductor* conductor;
-  std::uint32_t object;
+// The wires geometry's segments by conductor: its segment k is segment k − first_segment[c] of
+// conductor c = conductor_of[k] (also the conductor's object index). The conductor filter's
+// geometry user data.
+struct WireSegments {
+  std::span<const Conductor> conductors;
+  std::vector<std::uint32_t> conductor_of;   // by segment of the geometry
+  std::vector<std::uint32_t> first_segment;  // by conductor
 };
 
 class EmbreeScene {
@@ -50,19 +56,21 @@ class EmbreeScene {
   [[nodiscard]] const Scene& scene() const { return *objects_; }
   [[nodiscard]] const ReceiverParams& receiver() const { return receiver_; }
   [[nodiscard]] const TriangleMesh& terrain_mesh() const { return terrain_mesh_; }
+  [[nodiscard]] const WireSegments& wire_segments() const { return wire_segments_; }
   // r_wire + r_beam(max range), widened by the float-safety margin.
   [[nodiscard]] double capture_radius_m(const Conductor& conductor) const;
   // The wire pass's tfar for a pulse whose solid hit lies at `solid_range_m`: a little beyond it,
   // so float rounding of a reported segment depth cannot hide a segment in front of the solid.
   [[nodiscard]] static float wire_search_end(double solid_range_m);
 
-  // Geometry ids: in wires(), conductor i is geomID i; in solids(), mesh m is geomID m, then
+  // Geometry ids: wires() holds geometry 0 (when there are conductors); in solids(), mesh m is
+  // geomID m, then
   // come the cylinders and the terrain (RTC_INVALID_GEOMETRY_ID when absent).
   [[nodiscard]] unsigned cylinders_geom_id() const { return cylinders_geom_; }
   [[nodiscard]] unsigned terrain_geom_id() const { return terrain_geom_; }
 
  private:
-  void attach_conductor(const EmbreeDevice& device, std::size_t index);
+  void attach_conductors(const EmbreeDevice& device);
   void attach_cylinders(const EmbreeDevice& device);
   unsigned attach_triangles(const EmbreeDevice& device, const TriangleMesh& mesh,
                             const char* what);
@@ -71,7 +79,7 @@ class EmbreeScene {
   ReceiverParams receiver_;
   double max_range_m_;
   TriangleMesh terrain_mesh_;
-  std::vector<ConductorBinding> bindings_;
+  WireSegments wire_segments_;
   RTCScene solids_ = nullptr;
   RTCScene wires_ = nullptr;
   unsigned cylinders_geom_ = RTC_INVALID_GEOMETRY_ID;

@@ -75,13 +75,25 @@ TEST(EmbreeScene, GeometryIdsFollowTheSceneOrder) {
   const test::RandomScene made = test::random_scene(3, {.spans = 2, .trees = 2});
   const EmbreeDevice device;
   const EmbreeScene scene(device, made.scene, ReceiverParams{}, made.region, timeout_m());
-  // Conductors live in the wires scene, cylinders then terrain in the solids scene.
+  // Conductors live in the wires scene, all their segments in its one geometry; cylinders then
+  // terrain in the solids scene.
   EXPECT_NE(scene.wires(), scene.solids());
   EXPECT_EQ(scene.cylinders_geom_id(), 0u);
   EXPECT_EQ(scene.terrain_geom_id(), 1u);
-  for (unsigned i = 0; i < made.scene.conductors.size(); ++i) {
-    EXPECT_NE(rtcGetGeometry(scene.wires(), i), nullptr);
+  ASSERT_NE(rtcGetGeometry(scene.wires(), 0), nullptr);
+  ASSERT_GT(made.scene.conductors.size(), 1u);
+  // Geometry segment k maps back to conductor c's own segment k − first_segment[c].
+  const WireSegments& table = scene.wire_segments();
+  ASSERT_EQ(table.first_segment.size(), made.scene.conductors.size());
+  std::size_t k = 0;
+  for (std::uint32_t c = 0; c < made.scene.conductors.size(); ++c) {
+    EXPECT_EQ(table.first_segment[c], k);
+    for (std::size_t s = 0; s + 1 < made.scene.conductors[c].points_enu_m.size(); ++s, ++k) {
+      ASSERT_LT(k, table.conductor_of.size());
+      EXPECT_EQ(table.conductor_of[k], c);
+    }
   }
+  EXPECT_EQ(k, table.conductor_of.size());
   EXPECT_EQ(&scene.scene(), &made.scene);
 
   Scene bare;
