@@ -39,8 +39,8 @@ void conductor_filter(const RTCFilterFunctionNArguments* args) {
     const std::size_t segment = prim - wires->first_segment[conductor];
     PulseCandidates& pulse = context->candidates[id];
     Candidate candidate;
-    if (wire_segment_candidate(context->rays[id], wires->conductors[conductor], segment,
-                               conductor, receiver, candidate) &&
+    if (wire_segment_candidate(context->rays[id], context->scene->scene().conductors[conductor],
+                               segment, conductor, receiver, candidate) &&
         candidate.range_m <= context->max_range_m &&
         (!pulse.has_solid() || candidate.range_m < pulse.solid().range_m)) {
       pulse.offer_wire(candidate);
@@ -157,7 +157,6 @@ float EmbreeScene::wire_search_end(double solid_range_m) {
 
 void EmbreeScene::attach_conductors(const EmbreeDevice& device) {
   const std::vector<Conductor>& conductors = scene().conductors;
-  wire_segments_.conductors = conductors;
   std::size_t points = 0;
   std::size_t segments = 0;
   for (const Conductor& conductor : conductors) {

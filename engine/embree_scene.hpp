@@ -23,7 +23,6 @@
 #include <embree3/rtcore.h>
 
 #include <Eigen/Geometry>
-#include <span>
 #include <vector>
 
 #include "engine/embree_device.hpp"
@@ -37,7 +36,6 @@ namespace owsim {
 // conductor c = conductor_of[k] (also the conductor's object index). The conductor filter's
 // geometry user data.
 struct WireSegments {
-  std::span<const Conductor> conductors;
   std::vector<std::uint32_t> conductor_of;   // by segment of the geometry
   std::vector<std::uint32_t> first_segment;  // by conductor
 };
