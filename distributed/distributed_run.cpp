@@ -107,10 +107,14 @@ struct Block {
       placed.las.points_by_return = encoding.las.points_by_return;
       placed.las.min_record = encoding.las.min_record;
       placed.las.max_record = encoding.las.max_record;
-      bytes[kLas].insert(bytes[kLas].end(), encoding.las.records.begin(),
-                         encoding.las.records.begin() + static_cast<std::ptrdiff_t>(
-                                                            encoding.las.points *
-                                                            kLasPointRecordBytes));
+      bytes[kLas].insert(
+          bytes[kLas].end(), encoding.las.records.begin(),
+          encoding.las.records.begin() +
+              static_cast<std::ptrdiff_t>(encoding.las.points * kLasPointRecordBytes));
+    }
+    if (encoder.wants(OutputKind::truth)) {
+      placed.truth_row_count = encoding.truth.rows.size();
+      placed.truth_rows = encoding.truth_rows;
     }
     if (encoder.wants(OutputKind::ply)) {
       bytes[kPly].insert(bytes[kPly].end(), encoding.ply_vertices.begin(),
@@ -153,8 +157,9 @@ RunReport run_distributed(Communicator& comm, const Simulation& simulation,
   const FlightSetup& setup = simulation.setup();
   const ScanParams& scan = setup.scenario.scan;
   const bool root = comm.rank() == kRoot;
-  const FlightOutputOptions output_options =
+  FlightOutputOptions output_options =
       run_output_options(setup, simulation.run_fingerprint(options), options);
+  output_options.scenario_yaml = simulation.scenario_as_flown();
 
   // Process 0 alone touches the folder's state; a failure there stops every process.
   std::optional<FlightOutputs> outputs;
@@ -175,7 +180,7 @@ RunReport run_distributed(Communicator& comm, const Simulation& simulation,
 
   // Every process encodes its frames and draws their hits and range images.
   const FrameEncoder encoder(output_options.directory, output_options.outputs, setup.scene, scan,
-                             setup.local_frame);
+                             setup.local_frame, output_options.truth);
   std::optional<Quicklook> quicklook;
   if (encoder.wants(OutputKind::quicklook)) {
     QuicklookOptions quicklook_options;
@@ -262,8 +267,8 @@ RunReport run_distributed(Communicator& comm, const Simulation& simulation,
   }
   merge_map_hits();
   const double wall_s = std::chrono::duration<double>(Clock::now() - began).count();
-  RunReport report = run_report(setup, output_options.directory, start.first_frame, wall_s,
-                                threads, comm.size());
+  RunReport report =
+      run_report(setup, output_options.directory, start.first_frame, wall_s, threads, comm.size());
   report.setup_s = simulation.build_s() + std::chrono::duration<double>(began - opening).count();
   if (root) outputs->finish(run_facts(setup.scenario, report));
   comm.barrier();  // every process returns once the files are complete under their names

@@ -24,6 +24,12 @@ class Reader {
     std::memcpy(&value, bytes_.data(), sizeof value);
     bytes_.remove_prefix(sizeof value);
   }
+  [[nodiscard]] std::string get_text(std::uint64_t size) {
+    if (bytes_.size() < size) throw Error("placed frames: the bytes end inside a frame");
+    std::string text(bytes_.substr(0, static_cast<std::size_t>(size)));
+    bytes_.remove_prefix(static_cast<std::size_t>(size));
+    return text;
+  }
   [[nodiscard]] bool empty() const { return bytes_.empty(); }
 
  private:
@@ -60,6 +66,9 @@ void append_placed_frame(const PlacedFrame& frame, std::string& out) {
   put(out, frame.las.points_by_return);
   put(out, frame.las.min_record);
   put(out, frame.las.max_record);
+  put(out, frame.truth_row_count);
+  put(out, static_cast<std::uint64_t>(frame.truth_rows.size()));
+  out += frame.truth_rows;
 }
 
 std::vector<PlacedFrame> read_placed_frames(std::string_view bytes) {
@@ -83,6 +92,10 @@ std::vector<PlacedFrame> read_placed_frames(std::string_view bytes) {
     in.get(frame.las.points_by_return);
     in.get(frame.las.min_record);
     in.get(frame.las.max_record);
+    in.get(frame.truth_row_count);
+    std::uint64_t truth_bytes = 0;
+    in.get(truth_bytes);
+    frame.truth_rows = in.get_text(truth_bytes);
   }
   return frames;
 }

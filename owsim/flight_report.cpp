@@ -327,7 +327,12 @@ FlightReport write_flight_report(const std::filesystem::path& folder,
   if (options.max_frames < 1) throw input_error("--max-frames", "must be at least 1");
   if (options.max_points < 1) throw input_error("--max-points", "must be at least 1");
   const FlightFolder found = find_flight_folder(folder);
-  PageAssembly page(found, options);
+  // A run folder describes itself: its scenario.yaml stands in for --scenario.
+  FlightReportOptions with_scenario = options;
+  if (!with_scenario.scenario && std::filesystem::is_regular_file(folder / "scenario.yaml")) {
+    with_scenario.scenario = folder / "scenario.yaml";
+  }
+  PageAssembly page(found, with_scenario);
   page.add_summary();
   page.add_scene();
   page.add_trajectory();

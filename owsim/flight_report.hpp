@@ -12,11 +12,12 @@
 namespace owsim {
 
 struct FlightReportOptions {
-  std::filesystem::path out;                      // empty: <folder>/report.html
-  std::optional<std::filesystem::path> scenario;  // draws its wires, poles, trees and meshes
-  std::uint64_t max_points = 2'000'000;           // 3D points carried by the page
-  int max_frames = 400;                           // range images carried by the page
-  std::size_t max_objects = 5'000;                // rows of the ground-truth table
+  std::filesystem::path out;  // empty: <folder>/report.html
+  // draws its wires, poles, trees and meshes; default: the folder's scenario.yaml, if any
+  std::optional<std::filesystem::path> scenario;
+  std::uint64_t max_points = 2'000'000;  // 3D points carried by the page
+  int max_frames = 400;                  // range images carried by the page
+  std::size_t max_objects = 5'000;       // rows of the ground-truth table
 };
 
 struct FlightReport {

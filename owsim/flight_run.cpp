@@ -67,8 +67,7 @@ std::optional<RunCheckpoint> checkpoint_to_resume(const FlightOutputOptions& out
   const std::filesystem::path path = run_checkpoint_path(output_options.directory);
   std::optional<RunCheckpoint> checkpoint = read_run_checkpoint(path);
   if (!checkpoint) {
-    const std::filesystem::path json_path =
-        output_options.directory / kJsonRunCheckpointFileName;
+    const std::filesystem::path json_path = output_options.directory / kJsonRunCheckpointFileName;
     if (std::filesystem::exists(json_path)) {
       throw input_error(json_path.string(),
                         "a JSON checkpoint of an earlier owsim, which this one cannot resume; "
@@ -98,6 +97,7 @@ FlightOutputOptions flight_output_options(const FlightSetup& setup,
   FlightOutputOptions output_options;
   output_options.directory = out ? *out : std::filesystem::path("out") / setup.scenario.name;
   output_options.outputs = outputs;
+  if (outputs.contains(OutputKind::truth)) output_options.truth = &setup.truth_model();
   output_options.map_region = setup.flown.merged(scene_extent(setup.scene));
   output_options.map_region.min().array() -= 50.0;  // a margin around what was flown and built
   output_options.map_region.max().array() += 50.0;
@@ -142,8 +142,7 @@ void encode_frames(const FrameSimulator& simulator, const FlightSetup& setup,
                               encodings[static_cast<std::size_t>(frame.buffer)]);
       },
       [&](const FrameResult& frame) {
-        encoder.finish_encoding(frame.view(),
-                                setup.trajectory.pose_at(frame.pulses.front().time_s),
+        encoder.finish_encoding(frame.view(), setup.trajectory.pose_at(frame.pulses.front().time_s),
                                 encodings[static_cast<std::size_t>(frame.buffer)]);
       },
       [&](const FrameResult& frame) {
@@ -164,15 +163,17 @@ void simulate_frames(const FrameSimulator& simulator, const FlightSetup& setup,
 }
 
 RunReport run_flight_outputs(const FlightSetup& setup, const SimulationOptions& simulation,
-                             const std::string& source_hash, const RunOptions& options,
-                             int threads, double build_s) {
+                             const std::string& source_hash, const std::string& scenario_yaml,
+                             const RunOptions& options, int threads, double build_s) {
   const auto opening = Clock::now();
   const Scenario& scenario = setup.scenario;
   const std::int64_t frames = setup.frames;
-  const FlightOutputOptions output_options = run_output_options(
-      setup, source_hash.empty() ? nlohmann::json()
-                                 : run_fingerprint(setup, simulation, source_hash, options),
+  FlightOutputOptions output_options = run_output_options(
+      setup,
+      source_hash.empty() ? nlohmann::json()
+                          : run_fingerprint(setup, simulation, source_hash, options),
       options);
+  output_options.scenario_yaml = scenario_yaml;
   std::optional<RunCheckpoint> checkpoint;
   if (options.resume) checkpoint = checkpoint_to_resume(output_options, frames, options);
   FlightOutputs outputs(output_options, setup.scene, scenario.scan, setup.local_frame,

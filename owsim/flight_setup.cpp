@@ -191,4 +191,11 @@ FlightSetup::FlightSetup(Scenario scenario_in, const SimulationOptions& options)
           FrameSimulatorParams{scenario.scan, scenario.receiver, scenario.mount, scenario.seed},
           embree_scene, options.trace_api) {}
 
+const FrameTruthModel& FlightSetup::truth_model() const {
+  std::call_once(truth_built_, [&] {
+    truth_ = std::make_unique<FrameTruthModel>(scene, scenario.scan, scenario.mount, trajectory);
+  });
+  return *truth_;
+}
+
 }  // namespace owsim

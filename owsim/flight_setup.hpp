@@ -5,12 +5,15 @@
 // owsim::Simulation (owsim/simulation.hpp), `owsim run` and `owsim bench` all start from one.
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <memory>
+#include <mutex>
 #include <optional>
 
 #include "engine/embree_device.hpp"
 #include "engine/embree_scene.hpp"
 #include "engine/frame_simulator.hpp"
 #include "engine/frame_tracer.hpp"
+#include "evaluation/frame_truth.hpp"
 #include "geometry/geodetic_frame.hpp"
 #include "geometry/scene.hpp"
 #include "io/scenario/scenario.hpp"
@@ -49,6 +52,14 @@ struct FlightSetup {
   EmbreeDevice device;
   EmbreeScene embree_scene;  // terrain over `area` widened by the counter's timeout range
   FrameSimulator simulator;  // with options.trace_api
+
+  // Each frame's ground truth for truth.csv (evaluation/frame_truth.hpp): built on first use, so
+  // runs without that output pay nothing for it. Thread-safe.
+  [[nodiscard]] const FrameTruthModel& truth_model() const;
+
+ private:
+  mutable std::once_flag truth_built_;
+  mutable std::unique_ptr<FrameTruthModel> truth_;
 };
 
 // The east/north box of the scene's objects (conductor vertices, cylinder bases).

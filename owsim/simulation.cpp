@@ -11,7 +11,9 @@
 #include <utility>
 
 #include "geometry/error.hpp"
+#include "io/files/input_file.hpp"
 #include "io/run/run_checkpoint.hpp"
+#include "io/scenario/scenario_as_flown.hpp"
 #include "io/scenario/scenario_check.hpp"
 #include "io/scenario/scenario_loader.hpp"
 #include "io/trajectory/trajectory_loader.hpp"
@@ -40,12 +42,6 @@ std::vector<Eigen::Vector2d> recorded_track(const Scenario& scenario, const Loca
 
 int worker_count(const SimulationOptions& options) {
   return options.threads > 0 ? options.threads : tbb::info::default_concurrency();
-}
-
-std::string hash_of_file(const std::filesystem::path& path) {
-  ContentHash hash;
-  hash.add_file(path);
-  return hash.hex();
 }
 
 // A scenario built in code, checked and completed as the loader completes what it reads.
@@ -127,11 +123,13 @@ Trajectory pushed_trajectory(const FlightSetup& setup, std::int64_t frame,
 
 struct Simulation::State {
   // `start`: when building it began (before the scenario was read).
+  // `yaml`: the scenario's text (empty for a scenario built in code), read from `path`.
   State(Scenario scenario, const SimulationOptions& options_in, std::string hash,
-        Clock::time_point start)
+        Clock::time_point start, std::string_view yaml = {}, const std::filesystem::path& path = {})
       : options(options_in),
         source_hash(std::move(hash)),
         setup(std::move(scenario), options),
+        flown_yaml(yaml.empty() ? std::string() : as_flown(yaml, path)),
         geodesy(setup.local_frame),
         threads(worker_count(options)),
         arena(threads),
@@ -140,13 +138,26 @@ struct Simulation::State {
   SimulationOptions options;
   std::string source_hash;  // of the scenario's text; empty for a scenario built in code
   FlightSetup setup;
-  GeodesyCells geodesy;  // places the frames' returns on WGS-84, shared by every frame
+  std::string flown_yaml;  // scenario.yaml of its runs; empty for a scenario built in code
+  GeodesyCells geodesy;    // places the frames' returns on WGS-84, shared by every frame
   int threads;
   mutable tbb::task_arena arena;
   // object_ids(), built on first use: a run that never asks keeps no copy of a million ids.
   mutable std::once_flag ids_built;
   mutable std::vector<std::string> ids;
   double build_s;  // reading the scenario and building the scene, the BVH and the simulator
+
+  [[nodiscard]] std::string as_flown(std::string_view yaml,
+                                     const std::filesystem::path& path) const {
+    FlownOverrides overrides;
+    overrides.seed = setup.scenario.seed;
+    overrides.no_noise = options.no_noise;
+    if (options.frames || options.duration_s) {
+      overrides.duration_s =
+          static_cast<double>(setup.frames) * setup.scenario.scan.frame_duration_s();
+    }
+    return owsim::scenario_as_flown(yaml, path, overrides);
+  }
 
   void simulate(std::int64_t frame, const PoseSource& poses, Frame& out) const {
     arena.execute([&] {
@@ -165,16 +176,17 @@ Simulation Simulation::open(const std::filesystem::path& scenario_file,
                             const SimulationOptions& options) {
   const auto start = Clock::now();
   Scenario scenario = load_scenario(scenario_file, recorded_track);
-  return Simulation(
-      std::make_unique<State>(std::move(scenario), options, hash_of_file(scenario_file), start));
+  const std::string yaml = read_input_file(scenario_file, "scenario file", kMaxScenarioBytes);
+  return Simulation(std::make_unique<State>(std::move(scenario), options, ContentHash::hex_of(yaml),
+                                            start, yaml, scenario_file));
 }
 
 Simulation Simulation::from_yaml(std::string_view yaml, const std::filesystem::path& name,
                                  const SimulationOptions& options) {
   const auto start = Clock::now();
   Scenario scenario = load_scenario_text(yaml, name, recorded_track);
-  return Simulation(
-      std::make_unique<State>(std::move(scenario), options, ContentHash::hex_of(yaml), start));
+  return Simulation(std::make_unique<State>(std::move(scenario), options, ContentHash::hex_of(yaml),
+                                            start, yaml, name));
 }
 
 Simulation Simulation::from_scenario(Scenario scenario, const SimulationOptions& options) {
@@ -239,6 +251,8 @@ void Simulation::simulate_frame(std::int64_t frame, std::span<const PoseSample> 
 
 void Simulation::in_arena(const std::function<void()>& work) const { state_->arena.execute(work); }
 
+const std::string& Simulation::scenario_as_flown() const { return state_->flown_yaml; }
+
 nlohmann::json Simulation::run_fingerprint(const RunOptions& options) const {
   if (state_->source_hash.empty()) return nullptr;
   return owsim::run_fingerprint(state_->setup, state_->options, state_->source_hash, options);
@@ -246,8 +260,8 @@ nlohmann::json Simulation::run_fingerprint(const RunOptions& options) const {
 
 RunReport Simulation::run(const RunOptions& options) const {
   return state_->arena.execute([&] {
-    return run_flight_outputs(state_->setup, state_->options, state_->source_hash, options,
-                              state_->threads, state_->build_s);
+    return run_flight_outputs(state_->setup, state_->options, state_->source_hash,
+                              state_->flown_yaml, options, state_->threads, state_->build_s);
   });
 }
 

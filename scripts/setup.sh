@@ -14,6 +14,7 @@ packages=(
   pybind11-dev python3-dev         # the Python module (python/)
   libopenmpi-dev openmpi-bin       # mpirun … owsim run / sweep (distributed/, libowsim_mpi.so)
   clang libclang-rt-14-dev llvm    # scripts/fuzz.sh (libFuzzer), symbolized sanitizer reports
+  libboost-dev                     # Clopper–Pearson intervals (Boost.Math beta quantiles, header-only; owsim pd/score)
   zlib1g-dev                       # the report page's data (owsim view, io/report/)
   chromium                         # the report page's browser test (tests/web/)
 )

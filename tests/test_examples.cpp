@@ -114,9 +114,10 @@ TEST_P(Example, RunsIntoTheExpectedFiles) {
   for (const auto& entry : fs::recursive_directory_iterator(out)) {
     if (entry.is_regular_file()) files.insert(fs::relative(entry.path(), out).string());
   }
-  EXPECT_EQ(files, (std::set<std::string>{"flight.d64", "points.csv", "points.las", "points.ply",
-                                          "trajectory.csv", "summary.json", "quicklook/map.png",
-                                          "quicklook/frame_000000.png"}));
+  EXPECT_EQ(files,
+            (std::set<std::string>{"flight.d64", "points.csv", "points.las", "points.ply",
+                                   "trajectory.csv", "summary.json", "truth.csv", "scenario.yaml",
+                                   "quicklook/map.png", "quicklook/frame_000000.png"}));
   for (const char* png : {"quicklook/map.png", "quicklook/frame_000000.png"}) {
     EXPECT_EQ(test::read_whole_file(out / png).substr(0, 8), "\x89PNG\r\n\x1a\n") << png;
   }
@@ -290,12 +291,12 @@ TEST(Examples, HellsimFlightTurnsThroughNorthNearTheOrigin) {
 TEST(Examples, RealCorridorIsItsScriptsDataAsTwoGisLinesAndABarnOnADem) {
   const TempDir dir("owsim_real_corridor_script");
   fs::copy_file(kExamples / "data" / "make_real_corridor.py", dir / "make_real_corridor.py");
-  const std::string command = std::string(OWSIM_PYTHON) + " " + (dir / "make_real_corridor.py").string();
+  const std::string command =
+      std::string(OWSIM_PYTHON) + " " + (dir / "make_real_corridor.py").string();
   ASSERT_EQ(std::system(command.c_str()), 0) << command;
   for (const char* file : {"real_corridor_dem.asc", "real_corridor_dem.prj",
                            "real_corridor_lines.geojson", "real_corridor_barn.obj"}) {
-    EXPECT_EQ(test::read_whole_file(dir / file),
-              test::read_whole_file(kExamples / "data" / file))
+    EXPECT_EQ(test::read_whole_file(dir / file), test::read_whole_file(kExamples / "data" / file))
         << file;
   }
   const Scenario scenario = load_scenario(example("real_corridor"));

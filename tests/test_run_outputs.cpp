@@ -430,19 +430,19 @@ TEST(RunOutputs, SameSeedGivesTheSameBytesWithOneAndTwoThreads) {
 }
 
 // Each point file on its own (`--outputs csv`, `las`, `ply`) is byte for byte the file `points`
-// writes, and comes alone.
+// writes, and comes alone (with scenario.yaml, which every run folder holds).
 TEST(RunOutputs, EachPointFormatAloneIsTheFileOfPoints) {
   const OwsimRun& all = corridor_threads(2);
   ASSERT_EQ(all.result().exit_status, 0) << all.result().err;
   for (const auto& [output, file] : {std::pair{"csv", "points.csv"}, std::pair{"las", "points.las"},
                                      std::pair{"ply", "points.ply"}}) {
     SCOPED_TRACE(output);
-    const OwsimRun alone(example("corridor"),
-                         {"--frames", std::to_string(kCorridorFrames), "--threads", "2",
-                          "--outputs", output});
+    const OwsimRun alone(example("corridor"), {"--frames", std::to_string(kCorridorFrames),
+                                               "--threads", "2", "--outputs", output});
     ASSERT_EQ(alone.result().exit_status, 0) << alone.result().err;
-    EXPECT_EQ(files_under(alone.out()), std::set<fs::path>{file});
-    EXPECT_TRUE(test::read_whole_file(alone.out() / file) == test::read_whole_file(all.out() / file));
+    EXPECT_EQ(files_under(alone.out()), (std::set<fs::path>{file, "scenario.yaml"}));
+    EXPECT_TRUE(test::read_whole_file(alone.out() / file) ==
+                test::read_whole_file(all.out() / file));
   }
 }
 

@@ -159,8 +159,8 @@ TEST(RunResume, KilledRunResumesToTheUninterruptedBytes) {
   ASSERT_EQ(resumed.exit_status, 0) << resumed.command << "\n" << resumed.err;
   EXPECT_EQ(resumed.err, "");
 
-  for (const std::string name :
-       {"flight.d64", "points.csv", "points.las", "points.ply", "trajectory.csv"}) {
+  for (const std::string name : {"flight.d64", "points.csv", "points.las", "points.ply",
+                                 "trajectory.csv", "truth.csv", "scenario.yaml"}) {
     expect_same_bytes(work / "reference" / name, work / "resumed" / name);
   }
   std::vector<std::string> pngs;
@@ -224,8 +224,8 @@ TEST(RunResume, AJsonCheckpointOfAnEarlierOwsimIsRefusedInOneLine) {
   const TempDir work("owsim_run_resume");
   fs::create_directories(work / "old");
   std::ofstream(work / "old" / ".owsim-resume.json") << "owsim run checkpoint fnv1a64 0\n{}\n";
-  const std::vector<std::string> base = {"run",     corridor(),  "--frames", "3",   "--quiet",
-                                         "--threads", "2",       "--out",    "old"};
+  const std::vector<std::string> base = {"run",       corridor(), "--frames", "3",  "--quiet",
+                                         "--threads", "2",        "--out",    "old"};
   std::vector<std::string> resume = base;
   resume.push_back("--resume");
   const test::CliResult refused = run_cli(resume, work.path());

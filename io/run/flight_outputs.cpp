@@ -16,6 +16,7 @@
 #include "io/recording/word_file.hpp"
 #include "io/run/run_checkpoint.hpp"
 #include "io/run/summary_json.hpp"
+#include "io/run/truth_csv.hpp"
 #include "io/trajectory/trajectory_csv_writer.hpp"
 
 namespace owsim {
@@ -89,10 +90,12 @@ FlightOutputs::FlightOutputs(const FlightOutputOptions& options, const Scene& sc
       scan_(scan),
       local_frame_(&local_frame),
       scene_(&scene),
-      summary_(options.outputs.contains(OutputKind::summary)
+      // The frames' tallies name objects whenever summary.json or truth.csv is written.
+      summary_(options.outputs.contains(OutputKind::summary) ||
+                       (options.outputs.contains(OutputKind::truth) && options.truth != nullptr)
                    ? named_object_count(scene)
                    : 0),
-      encoder_(options_.directory, options_.outputs, scene, scan, local_frame),
+      encoder_(options_.directory, options_.outputs, scene, scan, local_frame, options.truth),
       checkpoint_path_(run_checkpoint_path(options_.directory)),
       last_checkpoint_(Clock::now()) {
   // The images' optional module (OpenImageIO) is loaded before anything is written or removed.
@@ -163,6 +166,7 @@ void FlightOutputs::open_outputs(const Scene& scene, const RunCheckpoint* from) 
           from->points_las ? std::optional(from->points_las->file) : std::nullopt);
     check(wants(OutputKind::ply), directory / "points.ply", from->points_ply);
     check(wants(OutputKind::trajectory), directory / "trajectory.csv", from->trajectory);
+    check(wants(OutputKind::truth), directory / "truth.csv", from->truth);
   }
 
   if (wants(OutputKind::d64)) {
@@ -202,6 +206,13 @@ void FlightOutputs::open_outputs(const Scene& scene, const RunCheckpoint* from) 
       trajectory_ = std::make_unique<TrajectoryCsvWriter>(
           resume ? TrajectoryCsvWriter::resume(path, *local_frame_, *resume)
                  : TrajectoryCsvWriter(path, *local_frame_));
+    }
+  }
+  if (wants(OutputKind::truth)) {
+    const std::filesystem::path path = directory / "truth.csv";
+    if (const auto* resume = state(&RunCheckpoint::truth, "truth.csv"); !committed(path)) {
+      truth_ = std::make_unique<TruthCsvWriter>(resume ? TruthCsvWriter::resume(path, *resume)
+                                                       : TruthCsvWriter(path));
     }
   }
   if (wants(OutputKind::quicklook)) {
@@ -254,6 +265,7 @@ void FlightOutputs::add_frame(const FrameView& frame, const FrameEncoding& encod
   if (points_las_) points_las_->append(encoded.las);
   if (points_ply_) points_ply_->append(encoded.ply_vertices);
   if (trajectory_) trajectory_->write(encoded.frame_start);
+  if (truth_) truth_->append(encoded.truth_rows, encoded.truth.rows.size());
   if (quicklook_) {
     quicklook_->add_trajectory_point(encoded.frame_start.position_enu_m);
     quicklook_->add_frame(frame);
@@ -274,6 +286,7 @@ void FlightOutputs::add_placed_frame(const PlacedFrame& frame) {
   if (points_las_) points_las_->skip(frame.las);
   if (points_ply_) points_ply_->skip(frame.points);
   if (trajectory_) trajectory_->write(frame.frame_start);
+  if (truth_) truth_->append(frame.truth_rows, frame.truth_row_count);
   if (quicklook_) quicklook_->add_trajectory_point(frame.frame_start.position_enu_m);
   ++frames_done_;
   resumed_while_finishing_ = false;
@@ -284,8 +297,9 @@ void FlightOutputs::add_map_hits(std::span<const std::uint8_t> map_mask) {
 }
 
 bool FlightOutputs::checkpoint_due() const {
-  return checkpointing() && std::chrono::duration<double>(Clock::now() - last_checkpoint_).count() >=
-                                options_.checkpoint_interval_s;
+  return checkpointing() &&
+         std::chrono::duration<double>(Clock::now() - last_checkpoint_).count() >=
+             options_.checkpoint_interval_s;
 }
 
 FlightOutputs::PlacedFiles FlightOutputs::placed_files() {
@@ -314,6 +328,7 @@ void FlightOutputs::write_checkpoint(bool finishing) {
   if (points_las_) checkpoint.points_las = points_las_->checkpoint();
   if (points_ply_) checkpoint.points_ply = points_ply_->checkpoint();
   if (trajectory_) checkpoint.trajectory = trajectory_->checkpoint();
+  if (truth_) checkpoint.truth = truth_->checkpoint();
   if (quicklook_) checkpoint.quicklook = quicklook_->checkpoint();
   write_run_checkpoint(checkpoint_path_, checkpoint);
   last_checkpoint_ = Clock::now();
@@ -330,10 +345,17 @@ void FlightOutputs::finish(const nlohmann::json& run_facts) {
   if (points_las_) points_las_->finish();
   if (points_ply_) points_ply_->finish();
   if (trajectory_) trajectory_->finish();
+  if (truth_) truth_->finish();
   if (quicklook_) quicklook_->finish();
+  if (!options_.scenario_yaml.empty()) {
+    AtomicOutputFile scenario(options_.directory / "scenario.yaml");
+    scenario.write(options_.scenario_yaml);
+    scenario.commit();
+  }
   if (wants(OutputKind::summary)) {
     nlohmann::json facts = run_facts;
     facts["pulses_per_frame"] = scan_.pulses_per_frame();
+    facts["frame_period_s"] = scan_.frame_duration_s();
     write_summary_json(options_.directory / "summary.json", summary_, *scene_, facts);
   }
   finished_ = true;

@@ -1,9 +1,9 @@
 #pragma once
 // Everything `owsim run` writes (INTERFACE.md "owsim run outputs"), fed one frame at a time in
 // frame order: the sensor words (flight.d64 or flight.hellas), points.csv / points.las /
-// points.ply, trajectory.csv, summary.json and quicklook/. Each file is written under a temporary
-// name and appears under its final name only when finish() completes it, so an interrupted run
-// leaves nothing half-written.
+// points.ply, trajectory.csv, summary.json, truth.csv and quicklook/. Each file is written under a
+// temporary name and appears under its final name only when finish() completes it, so an
+// interrupted run leaves nothing half-written.
 //
 // Given a run fingerprint, FlightOutputs also keeps the folder's checkpoint
 // (io/run/run_checkpoint.hpp) between frames, at most every checkpoint_interval_s of wall time: a
@@ -41,6 +41,12 @@ struct FlightOutputOptions {
   // The run's fingerprint (RunCheckpoint::run, an object): checkpoints are kept. Null: none.
   nlohmann::json checkpoint_run;
   double checkpoint_interval_s = 0.5;
+  // What computes each frame's truth.csv rows (evaluation/frame_truth.hpp); must outlive the
+  // outputs. Null: truth.csv is not written even if asked for.
+  const FrameTruthSource* truth = nullptr;
+  // scenario.yaml, the scenario as flown (io/scenario/scenario_as_flown.hpp): written by finish()
+  // when not empty.
+  std::string scenario_yaml;
 };
 
 class WordSink;
@@ -48,6 +54,7 @@ class PointsCsvWriter;
 class LasWriter;
 class PlyWriter;
 class TrajectoryCsvWriter;
+class TruthCsvWriter;
 class Quicklook;
 struct RunCheckpoint;
 
@@ -142,12 +149,13 @@ class FlightOutputs {
   std::unique_ptr<LasWriter> points_las_;
   std::unique_ptr<PlyWriter> points_ply_;
   std::unique_ptr<TrajectoryCsvWriter> trajectory_;
+  std::unique_ptr<TruthCsvWriter> truth_;
   std::unique_ptr<Quicklook> quicklook_;
   FrameEncoder encoder_;
   FrameEncoding encoding_;  // add_frame(frame, frame_start)'s, reused per frame
   std::int64_t frames_done_ = 0;
   bool resumed_while_finishing_ = false;  // the checkpoint already describes the finished frames
-  bool checkpoint_on_disk_ = false;        // this run wrote one, or resumed from one
+  bool checkpoint_on_disk_ = false;       // this run wrote one, or resumed from one
   bool finished_ = false;
   std::filesystem::path checkpoint_path_;
   Clock::time_point last_checkpoint_;

@@ -13,13 +13,17 @@ namespace owsim {
 
 FrameEncoder::FrameEncoder(const std::filesystem::path& directory,
                            const std::set<OutputKind>& outputs, const Scene& scene,
-                           const ScanParams& scan, const LocalFrame& local_frame)
+                           const ScanParams& scan, const LocalFrame& local_frame,
+                           const FrameTruthSource* truth)
     : outputs_(outputs),
       scan_(scan),
       geodesy_(local_frame, outputs.contains(OutputKind::las)
                                 ? std::optional(utm_grid_of(local_frame.origin()))
                                 : std::nullopt),
-      object_count_(named_object_count(scene)) {
+      object_count_(named_object_count(scene)),
+      truth_(truth) {
+  if (truth_ == nullptr) outputs_.erase(OutputKind::truth);
+  if (wants(OutputKind::truth)) truth_rows_.emplace(scene);
   if (wants(OutputKind::csv)) csv_.emplace((directory / "points.csv").string(), object_ids(scene));
   if (wants(OutputKind::las)) {
     LasWriterOptions las;
@@ -69,8 +73,8 @@ void FrameEncoder::encode_pulses(const FrameView& frame, int begin, int end,
   try {
     const auto first = static_cast<std::size_t>(begin);
     const auto count = static_cast<std::size_t>(end - begin);
-    // The tally feeds summary.json alone: without that output, the block's tally stays empty.
-    const std::size_t tallied = wants(OutputKind::summary) ? count : 0;
+    // The tally feeds summary.json and truth.csv: without them, the block's tally stays empty.
+    const std::size_t tallied = wants(OutputKind::summary) || wants(OutputKind::truth) ? count : 0;
     FlightSummary::tally(object_count_, frame.pulses.subspan(first, tallied),
                          frame.returns.subspan(first, tallied), block.tally);
     if (words) {
@@ -112,6 +116,11 @@ void FrameEncoder::finish_encoding(const FrameView& frame, const Pose& frame_sta
       if (csv_) csv_->encode(out.points, out.csv_rows);
       if (las_) las_->encode(out.points, out.las);
       if (wants(OutputKind::ply)) PlyWriter::encode(out.points, out.ply_vertices);
+    }
+    out.truth_rows.clear();
+    if (truth_rows_) {
+      truth_->frame_truth(frame.frame, frame.sweep, out.tally.object_hits, out.truth);
+      truth_rows_->encode(out.truth, out.truth_rows);
     }
   } catch (...) {
     out.error = std::current_exception();

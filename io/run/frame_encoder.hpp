@@ -17,6 +17,7 @@
 #include "io/run/flight_summary.hpp"
 #include "io/run/frame_encoding.hpp"
 #include "io/run/output_kind.hpp"
+#include "io/run/truth_csv.hpp"
 #include "sensor/frame_view.hpp"
 #include "sensor/mounting.hpp"
 #include "sensor/scan_params.hpp"
@@ -26,9 +27,12 @@ namespace owsim {
 class FrameEncoder {
  public:
   // The encoder of the `outputs` of a run into `directory` (which names the files in errors).
-  // Throws owsim::Error as LasWriter does for an origin points.las cannot hold.
+  // truth.csv is encoded only with a `truth` source (which must outlive the encoder); without one
+  // the output is dropped. Throws owsim::Error as LasWriter does for an origin points.las cannot
+  // hold.
   FrameEncoder(const std::filesystem::path& directory, const std::set<OutputKind>& outputs,
-               const Scene& scene, const ScanParams& scan, const LocalFrame& local_frame);
+               const Scene& scene, const ScanParams& scan, const LocalFrame& local_frame,
+               const FrameTruthSource* truth = nullptr);
 
   // encode_frame() in three steps, so the per-pulse part (the words and the summary tally) runs on
   // each block of a frame while the simulation has it in cache (FrameBlockDone of
@@ -56,6 +60,8 @@ class FrameEncoder {
   std::size_t object_count_;  // named_object_count: FlightSummary's objects, for its tally
   std::optional<PointsCsvRows> csv_;
   std::optional<LasPointEncoder> las_;
+  const FrameTruthSource* truth_ = nullptr;
+  std::optional<TruthCsvRows> truth_rows_;
 };
 
 }  // namespace owsim

@@ -12,6 +12,7 @@
 #include "io/points/las_writer.hpp"
 #include "io/points/point_record.hpp"
 #include "io/run/flight_summary.hpp"
+#include "io/run/frame_truth.hpp"
 #include "sensor/mounting.hpp"
 
 namespace owsim {
@@ -27,6 +28,8 @@ struct FrameEncoding {
   std::string csv_rows;                     // points.csv
   LasEncodedPoints las;                     // points.las
   std::vector<unsigned char> ply_vertices;  // points.ply
+  FrameTruth truth;                         // the frame's ground truth
+  std::string truth_rows;                   // truth.csv
   // What encoding threw: add_frame rethrows it, so errors surface in frame order.
   std::exception_ptr error;
   // The per-pulse part as FlightOutputs::encode_pulses leaves it, one entry per scan line: a
@@ -50,6 +53,9 @@ struct PlacedFrame {
   std::uint64_t points = 0;
   std::uint64_t csv_bytes = 0;
   LasEncodedPoints las;  // its statistics; `records` stays empty
+  // truth.csv's rows of the frame, whole: process 0 appends them (a frame's are kilobytes).
+  std::uint64_t truth_row_count = 0;
+  std::string truth_rows;
 };
 
 }  // namespace owsim

@@ -9,9 +9,13 @@ namespace owsim {
 namespace {
 
 constexpr std::pair<OutputKind, std::string_view> kNames[] = {
-    {OutputKind::d64, "d64"},         {OutputKind::csv, "csv"},
-    {OutputKind::las, "las"},         {OutputKind::ply, "ply"},
-    {OutputKind::trajectory, "trajectory"}, {OutputKind::summary, "summary"},
+    {OutputKind::d64, "d64"},
+    {OutputKind::csv, "csv"},
+    {OutputKind::las, "las"},
+    {OutputKind::ply, "ply"},
+    {OutputKind::trajectory, "trajectory"},
+    {OutputKind::summary, "summary"},
+    {OutputKind::truth, "truth"},
     {OutputKind::quicklook, "quicklook"}};
 constexpr OutputKind kPointKinds[] = {OutputKind::csv, OutputKind::las, OutputKind::ply};
 
@@ -40,7 +44,7 @@ std::set<OutputKind> parse_output_list(std::string_view list) {
       throw input_error("--outputs",
                         "unknown output '" + std::string(item) +
                             "' (expected d64, points, csv, las, ply, trajectory, summary, "
-                            "quicklook)");
+                            "truth, quicklook)");
     }
     kinds.insert(known->first);
   }
@@ -53,8 +57,8 @@ std::string output_list(const std::set<OutputKind>& outputs) {
   std::string list;
   for (const auto& [kind, name] : kNames) {
     if (!outputs.contains(kind)) continue;
-    const bool point_file = kind == OutputKind::csv || kind == OutputKind::las ||
-                            kind == OutputKind::ply;
+    const bool point_file =
+        kind == OutputKind::csv || kind == OutputKind::las || kind == OutputKind::ply;
     if (all_points && point_file && kind != OutputKind::csv) continue;
     if (!list.empty()) list += ',';
     list += all_points && point_file ? std::string_view("points") : name;

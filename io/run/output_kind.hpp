@@ -9,7 +9,8 @@
 namespace owsim {
 
 // The point files are three outputs: points.csv, points.las, points.ply.
-enum class OutputKind { d64, csv, las, ply, trajectory, summary, quicklook };
+// truth: truth.csv, the objects each frame could see (io/run/truth_csv.hpp).
+enum class OutputKind { d64, csv, las, ply, trajectory, summary, truth, quicklook };
 
 // "d64,summary" → {d64, summary}; `points` is csv, las and ply together; the word file is
 // flight.hellas for a HELLAS scenario. Throws owsim::Error naming the unknown item.

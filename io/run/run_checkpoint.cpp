@@ -31,6 +31,7 @@ enum StateBit : std::uint8_t {
   kPointsPly = 1u << 3,
   kTrajectory = 1u << 4,
   kQuicklook = 1u << 5,
+  kTruth = 1u << 6,
 };
 
 // ---- the quick-look map mask: runs of equal bytes (value, LEB128 length) ----
@@ -195,18 +196,20 @@ void write_run_checkpoint(const std::filesystem::path& path, const RunCheckpoint
   const auto bit = [](bool present, StateBit state) {
     return present ? static_cast<unsigned>(state) : 0u;
   };
-  out.put(static_cast<std::uint8_t>(
-      bit(checkpoint.words.has_value(), kWords) | bit(checkpoint.points_csv.has_value(), kPointsCsv) |
-      bit(checkpoint.points_las.has_value(), kPointsLas) |
-      bit(checkpoint.points_ply.has_value(), kPointsPly) |
-      bit(checkpoint.trajectory.has_value(), kTrajectory) |
-      bit(checkpoint.quicklook.has_value(), kQuicklook)));
+  out.put(static_cast<std::uint8_t>(bit(checkpoint.words.has_value(), kWords) |
+                                    bit(checkpoint.points_csv.has_value(), kPointsCsv) |
+                                    bit(checkpoint.points_las.has_value(), kPointsLas) |
+                                    bit(checkpoint.points_ply.has_value(), kPointsPly) |
+                                    bit(checkpoint.trajectory.has_value(), kTrajectory) |
+                                    bit(checkpoint.quicklook.has_value(), kQuicklook) |
+                                    bit(checkpoint.truth.has_value(), kTruth)));
   if (checkpoint.words) put_writer(out, *checkpoint.words);
   if (checkpoint.points_csv) put_writer(out, *checkpoint.points_csv);
   if (checkpoint.points_las) put_las(out, *checkpoint.points_las);
   if (checkpoint.points_ply) put_writer(out, *checkpoint.points_ply);
   if (checkpoint.trajectory) put_writer(out, *checkpoint.trajectory);
   if (checkpoint.quicklook) put_quicklook(out, *checkpoint.quicklook);
+  if (checkpoint.truth) put_writer(out, *checkpoint.truth);
   AtomicOutputFile file(path, {.sync_on_commit = false});
   file.write(checkpoint_file_bytes(out.bytes()));
   file.commit();
@@ -258,6 +261,7 @@ std::optional<RunCheckpoint> read_run_checkpoint(const std::filesystem::path& pa
     if ((states & kPointsPly) != 0) checkpoint.points_ply = writer_of(in);
     if ((states & kTrajectory) != 0) checkpoint.trajectory = writer_of(in);
     if ((states & kQuicklook) != 0) checkpoint.quicklook = quicklook_of(in);
+    if ((states & kTruth) != 0) checkpoint.truth = writer_of(in);
     if (in.left() != 0) throw Error("bytes after the last state");
     return checkpoint;
   } catch (const std::exception& e) {  // nlohmann::json's errors and ours

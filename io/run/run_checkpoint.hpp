@@ -37,8 +37,8 @@ namespace owsim {
 
 inline constexpr std::string_view kRunCheckpointFileName = ".owsim-resume";
 // 3: binary (1, 2: JSON, in .owsim-resume.json); 4: the building and fog classes, returns seen
-// through fog
-inline constexpr int kRunCheckpointVersion = 4;
+// through fog; 5: truth.csv
+inline constexpr int kRunCheckpointVersion = 5;
 // Where owsim wrote its JSON checkpoints (versions 1 and 2); --resume refuses one left there.
 inline constexpr std::string_view kJsonRunCheckpointFileName = ".owsim-resume.json";
 
@@ -52,6 +52,7 @@ struct RunCheckpoint {
   std::optional<LasCheckpoint> points_las;
   std::optional<WriterCheckpoint> points_ply;
   std::optional<WriterCheckpoint> trajectory;
+  std::optional<WriterCheckpoint> truth;
   std::optional<QuicklookCheckpoint> quicklook;
   friend bool operator==(const RunCheckpoint&, const RunCheckpoint&) = default;
 };

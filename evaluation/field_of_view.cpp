@@ -1,0 +1,191 @@
+#include "evaluation/field_of_view.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace owsim {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kRadPerDeg = std::numbers::pi / 180.0;
+
+struct Interval {
+  double lo = 0.0;
+  double hi = 0.0;
+};
+
+// A union of at most four disjoint closed intervals of the line parameter t.
+class IntervalSet {
+ public:
+  static IntervalSet all() { return IntervalSet({-kInf, kInf}); }
+  static IntervalSet none() { return {}; }
+  IntervalSet() = default;
+  explicit IntervalSet(Interval interval) { add(interval); }
+
+  void add(Interval interval) {
+    if (interval.lo <= interval.hi && count_ < items_.size()) items_[count_++] = interval;
+  }
+  [[nodiscard]] IntervalSet intersected(const IntervalSet& other) const {
+    IntervalSet out;
+    for (std::size_t i = 0; i < count_; ++i) {
+      for (std::size_t j = 0; j < other.count_; ++j) {
+        out.add({std::max(items_[i].lo, other.items_[j].lo),
+                 std::min(items_[i].hi, other.items_[j].hi)});
+      }
+    }
+    return out;
+  }
+  // The smallest interval holding every piece (empty stays empty).
+  [[nodiscard]] IntervalSet hull() const {
+    if (count_ == 0) return {};
+    Interval whole = items_[0];
+    for (std::size_t i = 1; i < count_; ++i) {
+      whole.lo = std::min(whole.lo, items_[i].lo);
+      whole.hi = std::max(whole.hi, items_[i].hi);
+    }
+    return IntervalSet(whole);
+  }
+  // ℝ without the interior of the one interval this set holds (empty: ℝ).
+  [[nodiscard]] IntervalSet complement_of_interior() const {
+    if (count_ == 0) return all();
+    IntervalSet out;
+    out.add({-kInf, items_[0].lo});
+    out.add({items_[0].hi, kInf});
+    return out;
+  }
+  [[nodiscard]] std::size_t size() const { return count_; }
+  [[nodiscard]] const Interval& operator[](std::size_t i) const { return items_[i]; }
+
+ private:
+  std::array<Interval, 4> items_{};
+  std::size_t count_ = 0;
+};
+
+// {t : g0 + g1·t ≥ 0}
+IntervalSet linear_at_least_zero(double g0, double g1) {
+  if (g1 == 0.0) return g0 >= 0.0 ? IntervalSet::all() : IntervalSet::none();
+  const double root = -g0 / g1;
+  return g1 > 0.0 ? IntervalSet({root, kInf}) : IntervalSet({-kInf, root});
+}
+
+// {t : A·t² + B·t + C ≥ 0}
+IntervalSet quadratic_at_least_zero(double a, double b, double c) {
+  if (a == 0.0) return linear_at_least_zero(c, b);
+  const double discriminant = b * b - 4.0 * a * c;
+  if (discriminant < 0.0) return a > 0.0 ? IntervalSet::all() : IntervalSet::none();
+  const double q = -0.5 * (b + std::copysign(std::sqrt(discriminant), b));
+  double r1 = q / a;
+  double r2 = q != 0.0 ? c / q : r1;
+  if (r1 > r2) std::swap(r1, r2);
+  if (a < 0.0) return IntervalSet({r1, r2});
+  IntervalSet out;
+  out.add({-kInf, r1});
+  out.add({r2, kInf});
+  return out;
+}
+
+// {t : u·v(t) ≥ s·|v(t)|}, v(t) = p + t·d, u a unit axis, 0 ≤ s < 1: a convex cone, one interval.
+IntervalSet inside_cone(const Eigen::Vector3d& u, double s, const Eigen::Vector3d& p,
+                        const Eigen::Vector3d& d) {
+  const double g0 = u.dot(p);
+  const double g1 = u.dot(d);
+  const double s2 = s * s;
+  const IntervalSet quadric =
+      quadratic_at_least_zero(g1 * g1 - s2 * d.squaredNorm(), 2.0 * (g0 * g1 - s2 * p.dot(d)),
+                              g0 * g0 - s2 * p.squaredNorm());
+  return quadric.intersected(linear_at_least_zero(g0, g1)).hull();
+}
+
+// {t : a(t) ≥ s·|v(t)|}, s = sin α: α ≥ the bound (a the ARC a component, SRC y).
+IntervalSet alpha_at_least(double s, const Eigen::Vector3d& p, const Eigen::Vector3d& d) {
+  if (s >= 0.0) return inside_cone(Eigen::Vector3d::UnitY(), s, p, d);
+  return inside_cone(-Eigen::Vector3d::UnitY(), -s, p, d).complement_of_interior();
+}
+
+// {t : a(t) ≤ s·|v(t)|}: α ≤ the bound.
+IntervalSet alpha_at_most(double s, const Eigen::Vector3d& p, const Eigen::Vector3d& d) {
+  if (s < 0.0) return inside_cone(-Eigen::Vector3d::UnitY(), -s, p, d);
+  return inside_cone(Eigen::Vector3d::UnitY(), s, p, d).complement_of_interior();
+}
+
+// β ≥ β₁: b·cos β₁ − c·sin β₁ ≥ 0, with (a, b, c) = (y, z, x) in SRC axes.
+IntervalSet beta_at_least(double sin_b, double cos_b, const Eigen::Vector3d& p,
+                          const Eigen::Vector3d& d) {
+  return linear_at_least_zero(p.z() * cos_b - p.x() * sin_b, d.z() * cos_b - d.x() * sin_b);
+}
+
+// β ≤ β₂: c·sin β₂ − b·cos β₂ ≥ 0.
+IntervalSet beta_at_most(double sin_b, double cos_b, const Eigen::Vector3d& p,
+                         const Eigen::Vector3d& d) {
+  return linear_at_least_zero(p.x() * sin_b - p.z() * cos_b, d.x() * sin_b - d.z() * cos_b);
+}
+
+// |v(t)| ≤ R
+IntervalSet within_range(double range_m, const Eigen::Vector3d& p, const Eigen::Vector3d& d) {
+  return quadratic_at_least_zero(-d.squaredNorm(), -2.0 * p.dot(d),
+                                 range_m * range_m - p.squaredNorm());
+}
+
+}  // namespace
+
+FieldAngles field_angles(const Eigen::Vector3d& v_src) {
+  const double length = v_src.norm();
+  if (!(length > 0.0)) return {};
+  return {std::asin(std::clamp(v_src.y() / length, -1.0, 1.0)) / kRadPerDeg,
+          std::atan2(v_src.z(), v_src.x()) / kRadPerDeg};
+}
+
+FieldOfView::FieldOfView(const ScanField& field)
+    : field_(field),
+      sin_alpha_min_(std::sin(field.alpha_min_deg * kRadPerDeg)),
+      sin_alpha_max_(std::sin(field.alpha_max_deg * kRadPerDeg)),
+      sin_beta_min_(std::sin(field.beta_min_deg * kRadPerDeg)),
+      cos_beta_min_(std::cos(field.beta_min_deg * kRadPerDeg)),
+      sin_beta_max_(std::sin(field.beta_max_deg * kRadPerDeg)),
+      cos_beta_max_(std::cos(field.beta_max_deg * kRadPerDeg)) {}
+
+bool FieldOfView::contains(const Eigen::Vector3d& v_src) const {
+  const FieldAngles angles = field_angles(v_src);
+  return v_src.norm() <= field_.range_max_m && angles.alpha_deg >= field_.alpha_min_deg &&
+         angles.alpha_deg <= field_.alpha_max_deg && angles.beta_deg >= field_.beta_min_deg &&
+         angles.beta_deg <= field_.beta_max_deg;
+}
+
+double nearest_on_segment(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1) {
+  const Eigen::Vector3d d = p1 - p0;
+  const double length2 = d.squaredNorm();
+  if (!(length2 > 0.0)) return 0.0;
+  return std::clamp(-p0.dot(d) / length2, 0.0, 1.0);
+}
+
+std::optional<double> FieldOfView::nearest_inside(const Eigen::Vector3d& p0,
+                                                  const Eigen::Vector3d& p1) const {
+  const Eigen::Vector3d d = p1 - p0;
+  IntervalSet inside = IntervalSet({0.0, 1.0});
+  inside = inside.intersected(beta_at_least(sin_beta_min_, cos_beta_min_, p0, d));
+  inside = inside.intersected(beta_at_most(sin_beta_max_, cos_beta_max_, p0, d));
+  if (inside.size() == 0) return std::nullopt;
+  inside = inside.intersected(within_range(field_.range_max_m, p0, d));
+  if (inside.size() == 0) return std::nullopt;
+  inside = inside.intersected(alpha_at_least(sin_alpha_min_, p0, d));
+  inside = inside.intersected(alpha_at_most(sin_alpha_max_, p0, d));
+  if (inside.size() == 0) return std::nullopt;
+  const double length2 = d.squaredNorm();
+  const double free_t = length2 > 0.0 ? -p0.dot(d) / length2 : 0.0;
+  double best_t = 0.0;
+  double best = kInf;
+  for (std::size_t i = 0; i < inside.size(); ++i) {
+    const double t = std::clamp(free_t, inside[i].lo, inside[i].hi);
+    const double distance2 = (p0 + t * d).squaredNorm();
+    if (distance2 < best) {
+      best = distance2;
+      best_t = t;
+    }
+  }
+  return best_t;
+}
+
+}  // namespace owsim

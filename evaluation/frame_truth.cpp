@@ -1,0 +1,284 @@
+#include "evaluation/frame_truth.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "geometry/error.hpp"
+#include "sensor/fiber_layout.hpp"
+#include "sensor/range_counter.hpp"
+
+namespace owsim {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kMinCellM = 250.0;       // about a fifth of the timeout range
+constexpr double kMaxCells = 1 << 20;     // the grid's cells, at most (4 MB of starts)
+constexpr double kVelocityStepS = 0.005;  // the central difference of the sensor's velocity
+
+// Nearest point overall and nearest point in the field, over segments given as sensor-frame
+// offsets (SRC) with their ENU endpoints.
+struct NearestPoints {
+  double overall2 = kInf;
+  Eigen::Vector3d overall_src = Eigen::Vector3d::Zero();
+  double inside2 = kInf;
+  Eigen::Vector3d inside_src = Eigen::Vector3d::Zero();
+
+  void add_segment(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const FieldOfView& field) {
+    const double t = nearest_on_segment(a, b);
+    const Eigen::Vector3d point = a + t * (b - a);
+    if (point.squaredNorm() < overall2) {
+      overall2 = point.squaredNorm();
+      overall_src = point;
+    }
+    if (std::optional<double> in = field.nearest_inside(a, b)) {
+      const Eigen::Vector3d seen = a + *in * (b - a);
+      if (seen.squaredNorm() < inside2) {
+        inside2 = seen.squaredNorm();
+        inside_src = seen;
+      }
+    }
+  }
+};
+
+}  // namespace
+
+ScanField frame_field(const ScanParams& scan, const FrameSweep& sweep) {
+  ScanField field;
+  field.alpha_min_deg = kInf;
+  field.alpha_max_deg = -kInf;
+  for (int fiber = 1; fiber < scan.fibers_per_line; ++fiber) {
+    const double alpha = fiber_alpha_deg(scan, fiber);
+    field.alpha_min_deg = std::min(field.alpha_min_deg, alpha);
+    field.alpha_max_deg = std::max(field.alpha_max_deg, alpha);
+  }
+  const double first = mirror_beta_deg(scan, sweep, 0);
+  const double last = mirror_beta_deg(scan, sweep, scan.pulses_per_frame() - 1);
+  const double sawtooth = std::abs(scan.sawtooth_deg);
+  field.beta_min_deg = std::min(first, last) - sawtooth;
+  field.beta_max_deg = std::max(first, last) + sawtooth;
+  field.range_max_m = timeout_range_m(scan.counter);
+  return field;
+}
+
+FrameTruthModel::FrameTruthModel(const Scene& scene, const ScanParams& scan, const Mount& mount,
+                                 const PoseSource& poses)
+    : scene_(&scene),
+      scan_(scan),
+      mount_(mount),
+      poses_(&poses),
+      range_max_m_(timeout_range_m(scan.counter)) {
+  const std::size_t count = named_object_count(scene);
+  if (count > std::numeric_limits<std::uint32_t>::max()) {
+    throw Error("truth: more scene objects than an object index holds");
+  }
+  bounds_.resize(count);
+  for (std::size_t object = 0; object < count; ++object) {
+    Eigen::AlignedBox3d box;
+    if (object < scene.conductors.size()) {
+      for (const Eigen::Vector3d& point : scene.conductors[object].points_enu_m) box.extend(point);
+    } else if (object < scene.conductors.size() + scene.cylinders.size()) {
+      const Cylinder& cylinder = scene.cylinders[object - scene.conductors.size()];
+      const Eigen::Vector3d corner(cylinder.radius_m, cylinder.radius_m, 0.0);
+      box.extend(cylinder.base_enu_m - corner);
+      box.extend(cylinder.base_enu_m + corner + Eigen::Vector3d(0, 0, cylinder.height_m));
+    } else {
+      const MeshObject& mesh =
+          scene.meshes[object - scene.conductors.size() - scene.cylinders.size()];
+      for (const Eigen::Vector3d& vertex : mesh.mesh.vertices) box.extend(vertex);
+    }
+    if (box.isEmpty()) box.extend(Eigen::Vector3d::Zero());
+    bounds_[object].centre = box.center();
+    bounds_[object].radius_m = 0.5 * box.diagonal().norm();
+  }
+  build_grid();
+}
+
+void FrameTruthModel::build_grid() {
+  if (bounds_.empty()) return;
+  Eigen::AlignedBox2d extent;
+  for (const Bounds& b : bounds_) {
+    extent.extend(b.centre.head<2>() - Eigen::Vector2d::Constant(b.radius_m));
+    extent.extend(b.centre.head<2>() + Eigen::Vector2d::Constant(b.radius_m));
+  }
+  const Eigen::Vector2d size = extent.sizes();
+  cell_m_ = std::max(kMinCellM, std::sqrt(size.x() * size.y() / kMaxCells));
+  cell_m_ = std::max({cell_m_, size.x() / 4096.0, size.y() / 4096.0});
+  west_m_ = extent.min().x();
+  south_m_ = extent.min().y();
+  cells_x_ = static_cast<int>(size.x() / cell_m_) + 1;
+  cells_y_ = static_cast<int>(size.y() / cell_m_) + 1;
+  const auto cell_of = [&](double value, double low, int cells) {
+    return std::clamp(static_cast<int>(std::floor((value - low) / cell_m_)), 0, cells - 1);
+  };
+  for (Bounds& b : bounds_) {
+    b.cell_x0 = cell_of(b.centre.x() - b.radius_m, west_m_, cells_x_);
+    b.cell_x1 = cell_of(b.centre.x() + b.radius_m, west_m_, cells_x_);
+    b.cell_y0 = cell_of(b.centre.y() - b.radius_m, south_m_, cells_y_);
+    b.cell_y1 = cell_of(b.centre.y() + b.radius_m, south_m_, cells_y_);
+  }
+  const auto cells = static_cast<std::size_t>(cells_x_) * static_cast<std::size_t>(cells_y_);
+  cell_start_.assign(cells + 1, 0);
+  const auto for_cells = [&](const Bounds& b, const auto& visit) {
+    for (int y = b.cell_y0; y <= b.cell_y1; ++y) {
+      for (int x = b.cell_x0; x <= b.cell_x1; ++x) {
+        visit(static_cast<std::size_t>(y) * static_cast<std::size_t>(cells_x_) +
+              static_cast<std::size_t>(x));
+      }
+    }
+  };
+  for (const Bounds& b : bounds_) for_cells(b, [&](std::size_t cell) { ++cell_start_[cell + 1]; });
+  for (std::size_t cell = 0; cell < cells; ++cell) cell_start_[cell + 1] += cell_start_[cell];
+  cell_objects_.resize(cell_start_.back());
+  std::vector<std::uint32_t> filled(cell_start_.begin(), cell_start_.end() - 1);
+  for (std::size_t object = 0; object < bounds_.size(); ++object) {
+    for_cells(bounds_[object], [&](std::size_t cell) {
+      cell_objects_[filled[cell]++] = static_cast<std::uint32_t>(object);
+    });
+  }
+}
+
+void FrameTruthModel::objects_near(double east_m, double north_m, double reach_m,
+                                   std::vector<std::uint32_t>& out) const {
+  if (bounds_.empty()) return;
+  const auto cell_of = [&](double value, double low, int cells) {
+    return static_cast<int>(
+        std::clamp(std::floor((value - low) / cell_m_), -1.0, static_cast<double>(cells)));
+  };
+  const int x0 = std::max(0, cell_of(east_m - reach_m, west_m_, cells_x_));
+  const int x1 = std::min(cells_x_ - 1, cell_of(east_m + reach_m, west_m_, cells_x_));
+  const int y0 = std::max(0, cell_of(north_m - reach_m, south_m_, cells_y_));
+  const int y1 = std::min(cells_y_ - 1, cell_of(north_m + reach_m, south_m_, cells_y_));
+  for (int y = y0; y <= y1; ++y) {
+    for (int x = x0; x <= x1; ++x) {
+      const std::size_t cell = static_cast<std::size_t>(y) * static_cast<std::size_t>(cells_x_) +
+                               static_cast<std::size_t>(x);
+      for (std::uint32_t k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {
+        const std::uint32_t object = cell_objects_[k];
+        const Bounds& b = bounds_[object];
+        // Once per object: in the first cell of its overlap with the queried square.
+        if (x == std::max(x0, b.cell_x0) && y == std::max(y0, b.cell_y0)) out.push_back(object);
+      }
+    }
+  }
+}
+
+FrameTruthModel::ObjectView FrameTruthModel::view_of(std::uint32_t object,
+                                                     const SensorPlacement& placement,
+                                                     const FieldOfView& field) const {
+  const Scene& scene = *scene_;
+  const Eigen::Matrix3d src_from_enu = placement.enu_from_src.transpose();
+  const auto to_src = [&](const Eigen::Vector3d& enu) {
+    return Eigen::Vector3d(src_from_enu * (enu - placement.origin_enu_m));
+  };
+  NearestPoints nearest;
+  std::size_t index = object;
+  if (index < scene.conductors.size()) {
+    const std::vector<Eigen::Vector3d>& points = scene.conductors[index].points_enu_m;
+    Eigen::Vector3d previous = to_src(points.front());
+    if (points.size() == 1) nearest.add_segment(previous, previous, field);
+    for (std::size_t i = 1; i < points.size(); ++i) {
+      const Eigen::Vector3d next = to_src(points[i]);
+      nearest.add_segment(previous, next, field);
+      previous = next;
+    }
+  } else if ((index -= scene.conductors.size()) < scene.cylinders.size()) {
+    // The vertical lines of the surface the sensor sees: the nearest and the two silhouettes.
+    const Cylinder& cylinder = scene.cylinders[index];
+    const Eigen::Vector2d axis = cylinder.base_enu_m.head<2>();
+    const Eigen::Vector2d toward = placement.origin_enu_m.head<2>() - axis;
+    const double distance = toward.norm();
+    const auto line_at = [&](const Eigen::Vector2d& xy) {
+      const Eigen::Vector3d bottom(xy.x(), xy.y(), cylinder.base_enu_m.z());
+      const Eigen::Vector3d top = bottom + Eigen::Vector3d(0.0, 0.0, cylinder.height_m);
+      nearest.add_segment(to_src(bottom), to_src(top), field);
+    };
+    if (distance <= cylinder.radius_m) {
+      // Above or inside the footprint: the axis, with the nearest point straight below or above.
+      line_at(placement.origin_enu_m.head<2>());
+    } else {
+      const Eigen::Vector2d unit = toward / distance;
+      const Eigen::Vector2d across(-unit.y(), unit.x());
+      const double cos_edge = cylinder.radius_m / distance;
+      const double sin_edge = std::sqrt(std::max(0.0, 1.0 - cos_edge * cos_edge));
+      line_at(axis + cylinder.radius_m * unit);
+      line_at(axis + cylinder.radius_m * (cos_edge * unit + sin_edge * across));
+      line_at(axis + cylinder.radius_m * (cos_edge * unit - sin_edge * across));
+    }
+  } else {
+    const TriangleMesh& mesh = scene.meshes[index - scene.cylinders.size()].mesh;
+    for (const auto& triangle : mesh.triangles) {
+      const Eigen::Vector3d corners[3] = {to_src(mesh.vertices[triangle[0]]),
+                                          to_src(mesh.vertices[triangle[1]]),
+                                          to_src(mesh.vertices[triangle[2]])};
+      for (int edge = 0; edge < 3; ++edge) {
+        nearest.add_segment(corners[edge], corners[(edge + 1) % 3], field);
+      }
+    }
+  }
+  ObjectView view;
+  view.in_view = nearest.inside2 < kInf;
+  const Eigen::Vector3d point_src = view.in_view ? nearest.inside_src : nearest.overall_src;
+  view.range_m = point_src.norm();
+  view.angles = field_angles(point_src);
+  view.point_enu_m = placement.origin_enu_m + placement.enu_from_src * point_src;
+  return view;
+}
+
+void FrameTruthModel::frame_truth(std::int64_t frame, const FrameSweep& sweep,
+                                  std::span<const FrameTally::ObjectHit> hits,
+                                  FrameTruth& out) const {
+  out.frame = frame;
+  out.time_s = pulse_time_s(scan_, frame, scan_.pulses_per_frame() / 2);
+  out.rows.clear();
+  const SensorPlacement placement =
+      sensor_placement(poses_->pose_at(out.time_s), mount_, scan_.model);
+  const Eigen::Vector3d velocity =
+      (sensor_placement(poses_->pose_at(out.time_s + kVelocityStepS), mount_, scan_.model)
+           .origin_enu_m -
+       sensor_placement(poses_->pose_at(out.time_s - kVelocityStepS), mount_, scan_.model)
+           .origin_enu_m) /
+      (2.0 * kVelocityStepS);
+  const FieldOfView field(frame_field(scan_, sweep));
+
+  std::vector<std::uint32_t> objects;
+  objects_near(placement.origin_enu_m.x(), placement.origin_enu_m.y(), range_max_m_, objects);
+  const std::size_t near = objects.size();
+  for (const FrameTally::ObjectHit& hit : hits) {
+    if (hit.object < bounds_.size()) objects.push_back(hit.object);
+  }
+  std::sort(objects.begin(), objects.end());
+  // Returns per object: the hits' objects, sorted, counted alongside.
+  std::vector<std::uint32_t> hit_objects;
+  hit_objects.reserve(objects.size() - near);
+  for (const FrameTally::ObjectHit& hit : hits) {
+    if (hit.object < bounds_.size()) hit_objects.push_back(hit.object);
+  }
+  std::sort(hit_objects.begin(), hit_objects.end());
+  objects.erase(std::unique(objects.begin(), objects.end()), objects.end());
+
+  auto hit = hit_objects.begin();
+  for (const std::uint32_t object : objects) {
+    const auto hit_end = std::upper_bound(hit, hit_objects.end(), object);
+    const auto first_hit = std::lower_bound(hit, hit_end, object);
+    const auto returns = static_cast<std::uint64_t>(hit_end - first_hit);
+    hit = hit_end;
+    const Bounds& b = bounds_[object];
+    if (returns == 0 && (b.centre - placement.origin_enu_m).norm() - b.radius_m > range_max_m_) {
+      continue;
+    }
+    const ObjectView view = view_of(object, placement, field);
+    if (returns == 0 && view.range_m > range_max_m_) continue;
+    TruthRow& row = out.rows.emplace_back();
+    row.object = object;
+    row.range_m = view.range_m;
+    row.alpha_deg = view.angles.alpha_deg;
+    row.beta_deg = view.angles.beta_deg;
+    row.in_view = view.in_view;
+    row.returns = returns;
+    const Eigen::Vector3d toward = view.point_enu_m - placement.origin_enu_m;
+    row.closing_speed_mps = view.range_m > 0.0 ? velocity.dot(toward) / view.range_m : 0.0;
+  }
+}
+
+}  // namespace owsim

@@ -1,0 +1,80 @@
+#pragma once
+// Which scene objects a frame could see (INTERFACE.md "Ground truth and detection evidence",
+// docs/evidence.md "In view"): the denominator of every detection statistic, computed from the
+// geometry alone — the trajectory's pose at the frame's middle, the frame's scanned field and the
+// counter's timeout range — never from what was hit.
+//
+// For each named object (conductor, pole, tree, mesh) whose nearest point lies within the timeout
+// range of the sensor at the frame's middle, or that has returns in the frame: the range and
+// sensor-frame α, β of its nearest point inside the field (in_view) or, when no part is inside,
+// of its nearest point overall; its returns; and the closing speed of the sensor on that point.
+// Shapes as tested against the field (evaluation/field_of_view.hpp, exact per segment): a
+// conductor by its polyline (the wire's radius, ≤ 2 cm, ignored), a pole or tree by the three
+// vertical lines of its surface the sensor sees (the nearest and the two silhouette edges), a mesh
+// by its triangles' edges. Objects are found through a uniform east/north grid, so a frame costs
+// the objects within range, not the scene.
+// The field is taken at one pose for the whole frame (1/3 s): an object at the field's edge may
+// drift across it during the frame; docs/evidence.md bounds the effect.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "evaluation/field_of_view.hpp"
+#include "geometry/scene.hpp"
+#include "io/run/frame_truth.hpp"
+#include "sensor/mounting.hpp"
+#include "sensor/pose_source.hpp"
+#include "sensor/scan_params.hpp"
+#include "sensor/scan_pattern.hpp"
+
+namespace owsim {
+
+// The field frame `sweep` scans: α from the lowest to the highest ranging fiber, β from the
+// sweep's first to its last mirror angle widened by the sawtooth, out to the timeout range.
+[[nodiscard]] ScanField frame_field(const ScanParams& scan, const FrameSweep& sweep);
+
+class FrameTruthModel final : public FrameTruthSource {
+ public:
+  // `scene` and `poses` must outlive the model. Builds the object grid once.
+  FrameTruthModel(const Scene& scene, const ScanParams& scan, const Mount& mount,
+                  const PoseSource& poses);
+
+  void frame_truth(std::int64_t frame, const FrameSweep& sweep,
+                   std::span<const FrameTally::ObjectHit> hits, FrameTruth& out) const override;
+
+  // One object seen from `placement` against `field` (what frame_truth computes per row, without
+  // returns and closing speed): for tests.
+  struct ObjectView {
+    double range_m = 0.0;
+    FieldAngles angles;
+    bool in_view = false;
+    Eigen::Vector3d point_enu_m = Eigen::Vector3d::Zero();
+  };
+  [[nodiscard]] ObjectView view_of(std::uint32_t object, const SensorPlacement& placement,
+                                   const FieldOfView& field) const;
+
+ private:
+  struct Bounds {
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();  // a bounding sphere
+    double radius_m = 0.0;
+    int cell_x0 = 0, cell_y0 = 0, cell_x1 = 0, cell_y1 = 0;  // the grid cells it overlaps
+  };
+  void build_grid();
+  // Every object whose box overlaps the square of half-width `reach_m` around (east, north), once.
+  void objects_near(double east_m, double north_m, double reach_m,
+                    std::vector<std::uint32_t>& out) const;
+
+  const Scene* scene_;
+  ScanParams scan_;
+  Mount mount_;
+  const PoseSource* poses_;
+  double range_max_m_ = 0.0;
+  std::vector<Bounds> bounds_;  // by object index
+  // The grid: cells of cell_m, cell (x, y) holds entries [cell_start_[c], cell_start_[c + 1]).
+  double west_m_ = 0.0, south_m_ = 0.0, cell_m_ = 1.0;
+  int cells_x_ = 0, cells_y_ = 0;
+  std::vector<std::uint32_t> cell_start_;
+  std::vector<std::uint32_t> cell_objects_;
+};
+
+}  // namespace owsim
