@@ -145,16 +145,15 @@ std::vector<std::string> member_values(const SweepSpec& spec, std::int64_t membe
     const RandomKey key{spec.seed, member, key_stream(variation.key), RandomPurpose::sweep_draw};
     switch (variation.kind) {
       case SweepVariation::Kind::uniform:
-        values.push_back(
-            shortest_text(variation.a + (variation.b - variation.a) * uniform01(key)));
+        values.push_back(shortest_text(variation.a + (variation.b - variation.a) * uniform01(key)));
         break;
       case SweepVariation::Kind::normal:
         values.push_back(shortest_text(variation.a + variation.b * standard_normal(key)));
         break;
       case SweepVariation::Kind::choice: {
         const auto n = variation.items.size();
-        const auto pick = std::min(n - 1, static_cast<std::size_t>(uniform01(key) *
-                                                                   static_cast<double>(n)));
+        const auto pick =
+            std::min(n - 1, static_cast<std::size_t>(uniform01(key) * static_cast<double>(n)));
         values.push_back(variation.items[pick]);
         break;
       }
@@ -216,7 +215,11 @@ std::string member_scenario_text(const SweepSpec& spec, std::int64_t member) {
 }
 
 std::string member_folder_name(const SweepSpec& spec, std::int64_t member) {
-  const std::size_t digits = std::to_string(std::max<std::int64_t>(spec.count - 1, 0)).size();
+  return member_folder_name(spec.count, member);
+}
+
+std::string member_folder_name(std::int64_t count, std::int64_t member) {
+  const std::size_t digits = std::to_string(std::max<std::int64_t>(count - 1, 0)).size();
   std::string name = std::to_string(member);
   if (name.size() < digits) name.insert(0, digits - name.size(), '0');
   return name;

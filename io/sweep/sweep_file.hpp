@@ -5,8 +5,8 @@
 //   base: corridor.yaml        the base scenario, relative to the sweep file
 //   count: 200                 members 0..count−1
 //   seed: 7                    member m's draws are keyed by (seed, m, key)
-//   outputs: d64,summary       as `owsim run --outputs` (summary.json is always written: sweep.csv
-//                              is made from it)
+//   outputs: d64,summary       as `owsim run --outputs` (default d64,summary,truth; summary.json
+//                              is always written: sweep.csv is made from it)
 //   vary:                      key path in the base scenario → how it varies
 //     scene.spans[0].conductor.diameter_mm: {uniform: [5, 30]}    a ≤ x < b
 //     sensor.mount.pitch_deg: {normal: [-4, 1]}                    mean, standard deviation
@@ -15,10 +15,10 @@
 //     seed: {member: true}                                         the member index itself
 //
 // A key path is dot-separated map keys with [i] list indices; every key but the last must be in
-// the base scenario (the last may be new, e.g. `seed`). Draws are Philox (geometry/keyed_random.hpp)
-// keyed by the sweep seed, the member and an FNV-1a hash of the key path, so member m's values do
-// not depend on how many members there are, on which process runs it, or on the other keys.
-// Errors throw owsim::Error "<file>:<line>: <key>: <problem>".
+// the base scenario (the last may be new, e.g. `seed`). Draws are Philox
+// (geometry/keyed_random.hpp) keyed by the sweep seed, the member and an FNV-1a hash of the key
+// path, so member m's values do not depend on how many members there are, on which process runs it,
+// or on the other keys. Errors throw owsim::Error "<file>:<line>: <key>: <problem>".
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -30,8 +30,8 @@ struct SweepVariation {
   enum class Kind { uniform, normal, choice, values, member };
   std::string key;  // key path in the base scenario
   Kind kind = Kind::member;
-  double a = 0.0;  // uniform: lower bound; normal: mean
-  double b = 0.0;  // uniform: upper bound; normal: standard deviation
+  double a = 0.0;                  // uniform: lower bound; normal: mean
+  double b = 0.0;                  // uniform: upper bound; normal: standard deviation
   std::vector<std::string> items;  // choice, values: each item as YAML text (flow style)
   int line = 0;                    // of the key in the sweep file
 };
@@ -43,7 +43,7 @@ struct SweepSpec {
   std::string base_text;
   std::int64_t count = 0;
   std::uint64_t seed = 0;
-  std::string outputs = "d64,summary";
+  std::string outputs = "d64,summary,truth";
   std::vector<SweepVariation> vary;  // in file order
 };
 
@@ -60,5 +60,7 @@ struct SweepSpec {
 
 // "0042": member m's folder name, zero-padded to the digits of count − 1.
 [[nodiscard]] std::string member_folder_name(const SweepSpec& spec, std::int64_t member);
+// The same for a sweep of `count` members.
+[[nodiscard]] std::string member_folder_name(std::int64_t count, std::int64_t member);
 
 }  // namespace owsim

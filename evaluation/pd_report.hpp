@@ -1,0 +1,38 @@
+#pragma once
+// `owsim pd` (INTERFACE.md "Ground truth and detection evidence"): detection probability versus
+// range over a run or sweep folder's truth.csv files, written as pd.csv, pd.json and pd.svg
+// (curves with their Clopper–Pearson bands). Each file is written under a temporary name and
+// renamed when complete.
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "evaluation/detection_probability.hpp"
+
+namespace owsim {
+
+struct PdOptions {
+  std::filesystem::path folder;          // a run folder or a sweep folder
+  std::optional<std::string> target_id;  // one object, by id
+  std::string target_class = "wire";     // else every object of this class, pooled
+  DetectionCriterion criterion;
+  RangeBins bins;
+  double confidence = 0.95;
+  std::optional<std::filesystem::path> out;  // default: `folder`
+};
+
+struct PdReport {
+  std::string target;  // the id, or "class:<class>"
+  std::filesystem::path directory;
+  std::size_t flights = 0;
+  PdCurve curve;
+};
+
+// Reads the folder's flights, computes the curve and writes the three files. Throws owsim::Error
+// naming the file, line or option for bad input (nothing is written then).
+[[nodiscard]] PdReport write_pd_report(const PdOptions& options);
+
+// "LO:HI:STEP" → RangeBins; owsim::Error naming --bins otherwise.
+[[nodiscard]] RangeBins parse_range_bins(const std::string& text);
+
+}  // namespace owsim
