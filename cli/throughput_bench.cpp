@@ -199,6 +199,7 @@ ThroughputReport measure_throughput(const ThroughputOptions& options) {
   double single_thread_best = kNever;
   double las_best = kNever;
   double points_best = kNever;
+  double truth_best = kNever;
   tbb::task_arena one_thread(1);
   for (int round = 1; round <= options.repeats; ++round) {
     trace_best[winner] = std::min(trace_best[winner], trace_seconds(tracer, frames, candidates));
@@ -210,9 +211,12 @@ ThroughputReport measure_throughput(const ThroughputOptions& options) {
     progress.note("single thread", round, options.repeats, rate(single_thread_best));
     las_best = std::min(las_best, end_to_end_seconds(simulator, setup, threads, {OutputKind::las}));
     progress.note("points.las", round, options.repeats, rate(las_best));
-    points_best = std::min(points_best, end_to_end_seconds(simulator, setup, threads,
-                                                           parse_output_list("points")));
+    points_best = std::min(
+        points_best, end_to_end_seconds(simulator, setup, threads, parse_output_list("points")));
     progress.note("points", round, options.repeats, rate(points_best));
+    truth_best = std::min(truth_best, end_to_end_seconds(simulator, setup, threads,
+                                                         {OutputKind::d64, OutputKind::truth}));
+    progress.note("words and truth", round, options.repeats, rate(truth_best));
   }
 
   // Brute force on a subset, scaled to every active pulse of the frames.
@@ -237,6 +241,7 @@ ThroughputReport measure_throughput(const ThroughputOptions& options) {
   report.single_thread_pulses_per_s = rate(single_thread_best);
   report.las_pulses_per_s = rate(las_best);
   report.points_pulses_per_s = rate(points_best);
+  report.truth_pulses_per_s = rate(truth_best);
   report.realtime_factor = report.end_to_end_pulses_per_s / scan.prf_hz;
   report.trace_api = api;
   report.peak_rss_mb = peak_rss_mb();

@@ -46,6 +46,7 @@ struct ThroughputReport {
   double single_thread_pulses_per_s = 0.0;
   double las_pulses_per_s = 0.0;     // --outputs las
   double points_pulses_per_s = 0.0;  // --outputs points (csv, las, ply)
+  double truth_pulses_per_s = 0.0;   // --outputs d64,truth: the words with the ground truth
   double realtime_factor = 0.0;      // end_to_end / the sensor's PRF
   TraceApi trace_api = TraceApi::stream;
   double peak_rss_mb = 0.0;

@@ -16,21 +16,35 @@ constexpr double kMinCellM = 250.0;       // about a fifth of the timeout range
 constexpr double kMaxCells = 1 << 20;     // the grid's cells, at most (4 MB of starts)
 constexpr double kVelocityStepS = 0.005;  // the central difference of the sensor's velocity
 
-// Nearest point overall and nearest point in the field, over segments given as sensor-frame
-// offsets (SRC) with their ENU endpoints.
-struct NearestPoints {
-  double overall2 = kInf;
-  Eigen::Vector3d overall_src = Eigen::Vector3d::Zero();
-  double inside2 = kInf;
-  Eigen::Vector3d inside_src = Eigen::Vector3d::Zero();
+// Nearest point overall and nearest point in the field, over an object's segments given as
+// sensor-frame offsets (SRC). The segments are kept (in a per-thread scratch buffer) so that the
+// clip against the field visits them nearest first and stops as soon as no segment can hold a
+// nearer point inside: a conductor in view costs a few clips, not one per segment.
+class NearestPoints {
+ public:
+  struct Segment {
+    double nearest2 = 0.0;  // the squared distance of the segment's nearest point
+    Eigen::Vector3d a, b;
+  };
+  explicit NearestPoints(std::vector<Segment>& scratch) : segments_(scratch) { segments_.clear(); }
 
-  void add_segment(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const FieldOfView& field) {
+  // The segment's nearest point, and the segment kept for clip().
+  void add_segment(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    segments_.push_back({add_overall(a, b), a, b});
+  }
+  // The segment's nearest point alone; returns its squared distance.
+  double add_overall(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
     const double t = nearest_on_segment(a, b);
     const Eigen::Vector3d point = a + t * (b - a);
-    if (point.squaredNorm() < overall2) {
-      overall2 = point.squaredNorm();
+    const double distance2 = point.squaredNorm();
+    if (distance2 < overall2) {
+      overall2 = distance2;
       overall_src = point;
     }
+    return distance2;
+  }
+  // The segment's nearest point in the field, if nearer than the one so far.
+  void clip_one(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const FieldOfView& field) {
     if (std::optional<double> in = field.nearest_inside(a, b)) {
       const Eigen::Vector3d seen = a + *in * (b - a);
       if (seen.squaredNorm() < inside2) {
@@ -39,9 +53,71 @@ struct NearestPoints {
       }
     }
   }
+  // Every kept segment against the field, nearest first.
+  void clip(const FieldOfView& field) {
+    std::sort(segments_.begin(), segments_.end(),
+              [](const Segment& x, const Segment& y) { return x.nearest2 < y.nearest2; });
+    for (const Segment& segment : segments_) {
+      if (segment.nearest2 >= inside2) break;
+      clip_one(segment.a, segment.b, field);
+    }
+  }
+
+  double overall2 = kInf;
+  Eigen::Vector3d overall_src = Eigen::Vector3d::Zero();
+  double inside2 = kInf;
+  Eigen::Vector3d inside_src = Eigen::Vector3d::Zero();
+
+ private:
+  std::vector<Segment>& segments_;
 };
 
+// False when a sphere (centre as a sensor-frame offset) lies wholly outside the field: beyond its
+// range, or farther in α or β than its angular radius allows. Conservative: true may still find
+// nothing inside.
+bool could_reach(const FieldOfView& field, const Eigen::Vector3d& centre_src, double radius_m) {
+  const ScanField& f = field.field();
+  const double distance = centre_src.norm();
+  if (distance - radius_m > f.range_max_m) return false;
+  if (distance <= radius_m * 1.0001 + 1e-6) return true;  // around the sensor
+  constexpr double kDegPerRad = 180.0 / 3.14159265358979323846;
+  const double spread_deg = std::asin(radius_m / distance) * kDegPerRad;
+  const FieldAngles angles = field_angles(centre_src);
+  if (angles.alpha_deg + spread_deg < f.alpha_min_deg ||
+      angles.alpha_deg - spread_deg > f.alpha_max_deg) {
+    return false;
+  }
+  // β of points within the cone of half-angle `spread` about the centre: |Δβ| ≤
+  // asin(sin spread / cos α); in doubt (the cone reaches the fiber axis, or the centre is behind
+  // the sensor where β wraps), keep it.
+  const double sin_spread = radius_m / distance;
+  const double cos_alpha = std::cos(angles.alpha_deg / kDegPerRad);
+  if (sin_spread >= cos_alpha || centre_src.x() <= 0.0) return true;
+  const double beta_spread = std::asin(sin_spread / cos_alpha) * kDegPerRad;
+  return angles.beta_deg + beta_spread >= f.beta_min_deg &&
+         angles.beta_deg - beta_spread <= f.beta_max_deg;
+}
+
 }  // namespace
+
+std::vector<FrameTruthModel::ConductorChunk> FrameTruthModel::conductor_chunks(
+    const Conductor& conductor) {
+  std::vector<ConductorChunk> chunks;
+  const auto vertices = static_cast<std::uint32_t>(conductor.points_enu_m.size());
+  if (vertices == 0) return chunks;
+  for (std::uint32_t first = 0;; first += kChunkSegments) {
+    ConductorChunk chunk;
+    chunk.first = first;
+    chunk.last = std::min(first + kChunkSegments, vertices - 1);
+    Eigen::AlignedBox3d box;
+    for (std::uint32_t k = chunk.first; k <= chunk.last; ++k) box.extend(conductor.points_enu_m[k]);
+    chunk.centre = box.center();
+    chunk.radius_m = 0.5 * box.diagonal().norm();
+    chunks.push_back(chunk);
+    if (chunk.last + 1 >= vertices) break;
+  }
+  return chunks;
+}
 
 ScanField frame_field(const ScanParams& scan, const FrameSweep& sweep) {
   ScanField field;
@@ -88,6 +164,8 @@ FrameTruthModel::FrameTruthModel(const Scene& scene, const ScanParams& scan, con
       for (const Eigen::Vector3d& vertex : mesh.mesh.vertices) box.extend(vertex);
     }
     if (box.isEmpty()) box.extend(Eigen::Vector3d::Zero());
+    if (object < scene.conductors.size())
+      chunks_.push_back(conductor_chunks(scene.conductors[object]));
     bounds_[object].centre = box.center();
     bounds_[object].radius_m = 0.5 * box.diagonal().norm();
   }
@@ -171,16 +249,43 @@ FrameTruthModel::ObjectView FrameTruthModel::view_of(std::uint32_t object,
   const auto to_src = [&](const Eigen::Vector3d& enu) {
     return Eigen::Vector3d(src_from_enu * (enu - placement.origin_enu_m));
   };
-  NearestPoints nearest;
+  thread_local std::vector<NearestPoints::Segment> scratch;
+  NearestPoints nearest(scratch);
   std::size_t index = object;
   if (index < scene.conductors.size()) {
+    // Chunks of the polyline nearest first, each only while it can still hold a nearer point.
     const std::vector<Eigen::Vector3d>& points = scene.conductors[index].points_enu_m;
-    Eigen::Vector3d previous = to_src(points.front());
-    if (points.size() == 1) nearest.add_segment(previous, previous, field);
-    for (std::size_t i = 1; i < points.size(); ++i) {
-      const Eigen::Vector3d next = to_src(points[i]);
-      nearest.add_segment(previous, next, field);
-      previous = next;
+    const std::vector<ConductorChunk>& chunks = chunks_[index];
+    thread_local std::vector<std::pair<double, std::uint32_t>> order;
+    order.clear();
+    for (std::uint32_t c = 0; c < chunks.size(); ++c) {
+      const double gap = (chunks[c].centre - placement.origin_enu_m).norm() - chunks[c].radius_m;
+      order.emplace_back(std::max(0.0, gap), c);
+    }
+    std::sort(order.begin(), order.end());
+    const auto for_segments = [&](const ConductorChunk& chunk, const auto& visit) {
+      Eigen::Vector3d previous = to_src(points[chunk.first]);
+      if (chunk.first == chunk.last) visit(previous, previous);
+      for (std::uint32_t k = chunk.first + 1; k <= chunk.last; ++k) {
+        const Eigen::Vector3d next = to_src(points[k]);
+        visit(previous, next);
+        previous = next;
+      }
+    };
+    for (const auto& [gap, c] : order) {
+      if (gap * gap >= nearest.overall2) break;
+      for_segments(chunks[c], [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+        nearest.add_overall(a, b);
+      });
+    }
+    if (could_reach(field, to_src(bounds_[object].centre), bounds_[object].radius_m)) {
+      for (const auto& [gap, c] : order) {
+        if (gap * gap >= nearest.inside2) break;
+        if (!could_reach(field, to_src(chunks[c].centre), chunks[c].radius_m)) continue;
+        for_segments(chunks[c], [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+          nearest.clip_one(a, b, field);
+        });
+      }
     }
   } else if ((index -= scene.conductors.size()) < scene.cylinders.size()) {
     // The vertical lines of the surface the sensor sees: the nearest and the two silhouettes.
@@ -191,7 +296,7 @@ FrameTruthModel::ObjectView FrameTruthModel::view_of(std::uint32_t object,
     const auto line_at = [&](const Eigen::Vector2d& xy) {
       const Eigen::Vector3d bottom(xy.x(), xy.y(), cylinder.base_enu_m.z());
       const Eigen::Vector3d top = bottom + Eigen::Vector3d(0.0, 0.0, cylinder.height_m);
-      nearest.add_segment(to_src(bottom), to_src(top), field);
+      nearest.add_segment(to_src(bottom), to_src(top));
     };
     if (distance <= cylinder.radius_m) {
       // Above or inside the footprint: the axis, with the nearest point straight below or above.
@@ -212,9 +317,15 @@ FrameTruthModel::ObjectView FrameTruthModel::view_of(std::uint32_t object,
                                           to_src(mesh.vertices[triangle[1]]),
                                           to_src(mesh.vertices[triangle[2]])};
       for (int edge = 0; edge < 3; ++edge) {
-        nearest.add_segment(corners[edge], corners[(edge + 1) % 3], field);
+        nearest.add_segment(corners[edge], corners[(edge + 1) % 3]);
       }
     }
+  }
+  // Objects whose bounding sphere lies wholly outside the field (most of a scene, off to the
+  // sides or behind) skip the clipping.
+  if (object >= scene.conductors.size() &&
+      could_reach(field, to_src(bounds_[object].centre), bounds_[object].radius_m)) {
+    nearest.clip(field);
   }
   ObjectView view;
   view.in_view = nearest.inside2 < kInf;
