@@ -18,5 +18,6 @@ void add_merge_command(CLI::App& app, CommandResult& result);
 void add_sweep_command(CLI::App& app, CommandResult& result);
 void add_view_command(CLI::App& app, CommandResult& result);
 void add_pd_command(CLI::App& app, CommandResult& result);
+void add_score_command(CLI::App& app, CommandResult& result);
 
 }  // namespace owsim::cli

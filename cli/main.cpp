@@ -28,6 +28,7 @@ int main(int argc, char** argv) {
   owsim::cli::add_sweep_command(app, result);
   owsim::cli::add_view_command(app, result);
   owsim::cli::add_pd_command(app, result);
+  owsim::cli::add_score_command(app, result);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

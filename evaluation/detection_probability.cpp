@@ -54,16 +54,41 @@ std::int64_t window_frames(double window_s, double frame_period_s) {
       1, static_cast<std::int64_t>(std::floor(window_s / frame_period_s + 1e-9)));
 }
 
+std::vector<PdBin> empty_bins(const RangeBins& ranges) {
+  std::vector<PdBin> bins(ranges.count());
+  for (std::size_t b = 0; b < bins.size(); ++b) {
+    bins[b].range_lo_m = ranges.bin_lo_m(b);
+    bins[b].range_hi_m = ranges.bin_hi_m(b);
+  }
+  return bins;
+}
+
+void add_trials(std::span<const Trial> trials, std::vector<PdBin>& bins) {
+  for (const Trial& trial : trials) {
+    for (PdBin& bin : bins) {
+      if (trial.farthest_in_view_m < bin.range_lo_m) continue;
+      ++bin.trials;
+      if (trial.detection_range_m && *trial.detection_range_m >= bin.range_lo_m) {
+        ++bin.trials_detected;
+      }
+    }
+  }
+}
+
+void set_intervals(std::vector<PdBin>& bins, double confidence) {
+  for (PdBin& bin : bins) {
+    bin.window_interval = clopper_pearson(bin.windows_detected, bin.windows, confidence);
+    bin.cumulative_interval = clopper_pearson(bin.trials_detected, bin.trials, confidence);
+  }
+}
+
 PdCurve detection_probability(std::span<const TargetFlight> flights,
                               const DetectionCriterion& criterion, const RangeBins& bins,
                               double confidence) {
   validate(criterion, bins, confidence);
   PdCurve curve;
-  curve.bins.resize(bins.count());
-  for (std::size_t b = 0; b < curve.bins.size(); ++b) {
-    curve.bins[b].range_lo_m = bins.bin_lo_m(b);
-    curve.bins[b].range_hi_m = bins.bin_hi_m(b);
-  }
+  curve.bins = empty_bins(bins);
+  std::vector<Trial> trials;
   std::vector<std::uint64_t> returns_before;  // prefix sums of returns over the flight's frames
   for (const TargetFlight& flight : flights) {
     if (flight.rows.empty()) continue;
@@ -102,16 +127,10 @@ PdCurve detection_probability(std::span<const TargetFlight> flights,
     if (farthest_in_view < 0.0) continue;  // never in view: not a trial
     ++curve.trials;
     if (detection_range) ++curve.trials_detected;
-    for (PdBin& bin : curve.bins) {
-      if (farthest_in_view < bin.range_lo_m) continue;
-      ++bin.trials;
-      if (detection_range && *detection_range >= bin.range_lo_m) ++bin.trials_detected;
-    }
+    trials.push_back({farthest_in_view, detection_range});
   }
-  for (PdBin& bin : curve.bins) {
-    bin.window_interval = clopper_pearson(bin.windows_detected, bin.windows, confidence);
-    bin.cumulative_interval = clopper_pearson(bin.trials_detected, bin.trials, confidence);
-  }
+  add_trials(trials, curve.bins);
+  set_intervals(curve.bins, confidence);
   for (std::size_t p = 0; p < kDemonstratedProbabilities.size(); ++p) {
     std::optional<double> reached;
     for (const PdBin& bin : curve.bins) {

@@ -69,6 +69,23 @@ struct PdCurve {
   std::array<std::optional<double>, kDemonstratedProbabilities.size()> demonstrated_range_m;
 };
 
+// One trial: the farthest range at which the target was in view, and the range at which it was
+// first detected (none: never).
+struct Trial {
+  double farthest_in_view_m = 0.0;
+  std::optional<double> detection_range_m;
+};
+
+// Adds `trials` to the trial counts of `bins` (made for `ranges`): a trial counts in a bin when
+// farthest_in_view_m ≥ its lower edge, and is detected there when detection_range_m ≥ that edge.
+void add_trials(std::span<const Trial> trials, std::vector<PdBin>& bins);
+
+// Empty bins over `ranges`.
+[[nodiscard]] std::vector<PdBin> empty_bins(const RangeBins& ranges);
+
+// Sets every bin's intervals from its counts.
+void set_intervals(std::vector<PdBin>& bins, double confidence);
+
 // The window length in frames: max(1, ⌊W / frame period⌋).
 [[nodiscard]] std::int64_t window_frames(double window_s, double frame_period_s);
 

@@ -12,8 +12,6 @@ namespace owsim {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kMinCellM = 250.0;       // about a fifth of the timeout range
-constexpr double kMaxCells = 1 << 20;     // the grid's cells, at most (4 MB of starts)
 constexpr double kVelocityStepS = 0.005;  // the central difference of the sensor's velocity
 
 // Nearest point overall and nearest point in the field, over an object's segments given as
@@ -143,102 +141,11 @@ FrameTruthModel::FrameTruthModel(const Scene& scene, const ScanParams& scan, con
       scan_(scan),
       mount_(mount),
       poses_(&poses),
-      range_max_m_(timeout_range_m(scan.counter)) {
-  const std::size_t count = named_object_count(scene);
-  if (count > std::numeric_limits<std::uint32_t>::max()) {
-    throw Error("truth: more scene objects than an object index holds");
-  }
-  bounds_.resize(count);
-  for (std::size_t object = 0; object < count; ++object) {
-    Eigen::AlignedBox3d box;
-    if (object < scene.conductors.size()) {
-      for (const Eigen::Vector3d& point : scene.conductors[object].points_enu_m) box.extend(point);
-    } else if (object < scene.conductors.size() + scene.cylinders.size()) {
-      const Cylinder& cylinder = scene.cylinders[object - scene.conductors.size()];
-      const Eigen::Vector3d corner(cylinder.radius_m, cylinder.radius_m, 0.0);
-      box.extend(cylinder.base_enu_m - corner);
-      box.extend(cylinder.base_enu_m + corner + Eigen::Vector3d(0, 0, cylinder.height_m));
-    } else {
-      const MeshObject& mesh =
-          scene.meshes[object - scene.conductors.size() - scene.cylinders.size()];
-      for (const Eigen::Vector3d& vertex : mesh.mesh.vertices) box.extend(vertex);
-    }
-    if (box.isEmpty()) box.extend(Eigen::Vector3d::Zero());
-    if (object < scene.conductors.size())
-      chunks_.push_back(conductor_chunks(scene.conductors[object]));
-    bounds_[object].centre = box.center();
-    bounds_[object].radius_m = 0.5 * box.diagonal().norm();
-  }
-  build_grid();
-}
-
-void FrameTruthModel::build_grid() {
-  if (bounds_.empty()) return;
-  Eigen::AlignedBox2d extent;
-  for (const Bounds& b : bounds_) {
-    extent.extend(b.centre.head<2>() - Eigen::Vector2d::Constant(b.radius_m));
-    extent.extend(b.centre.head<2>() + Eigen::Vector2d::Constant(b.radius_m));
-  }
-  const Eigen::Vector2d size = extent.sizes();
-  cell_m_ = std::max(kMinCellM, std::sqrt(size.x() * size.y() / kMaxCells));
-  cell_m_ = std::max({cell_m_, size.x() / 4096.0, size.y() / 4096.0});
-  west_m_ = extent.min().x();
-  south_m_ = extent.min().y();
-  cells_x_ = static_cast<int>(size.x() / cell_m_) + 1;
-  cells_y_ = static_cast<int>(size.y() / cell_m_) + 1;
-  const auto cell_of = [&](double value, double low, int cells) {
-    return std::clamp(static_cast<int>(std::floor((value - low) / cell_m_)), 0, cells - 1);
-  };
-  for (Bounds& b : bounds_) {
-    b.cell_x0 = cell_of(b.centre.x() - b.radius_m, west_m_, cells_x_);
-    b.cell_x1 = cell_of(b.centre.x() + b.radius_m, west_m_, cells_x_);
-    b.cell_y0 = cell_of(b.centre.y() - b.radius_m, south_m_, cells_y_);
-    b.cell_y1 = cell_of(b.centre.y() + b.radius_m, south_m_, cells_y_);
-  }
-  const auto cells = static_cast<std::size_t>(cells_x_) * static_cast<std::size_t>(cells_y_);
-  cell_start_.assign(cells + 1, 0);
-  const auto for_cells = [&](const Bounds& b, const auto& visit) {
-    for (int y = b.cell_y0; y <= b.cell_y1; ++y) {
-      for (int x = b.cell_x0; x <= b.cell_x1; ++x) {
-        visit(static_cast<std::size_t>(y) * static_cast<std::size_t>(cells_x_) +
-              static_cast<std::size_t>(x));
-      }
-    }
-  };
-  for (const Bounds& b : bounds_) for_cells(b, [&](std::size_t cell) { ++cell_start_[cell + 1]; });
-  for (std::size_t cell = 0; cell < cells; ++cell) cell_start_[cell + 1] += cell_start_[cell];
-  cell_objects_.resize(cell_start_.back());
-  std::vector<std::uint32_t> filled(cell_start_.begin(), cell_start_.end() - 1);
-  for (std::size_t object = 0; object < bounds_.size(); ++object) {
-    for_cells(bounds_[object], [&](std::size_t cell) {
-      cell_objects_[filled[cell]++] = static_cast<std::uint32_t>(object);
-    });
-  }
-}
-
-void FrameTruthModel::objects_near(double east_m, double north_m, double reach_m,
-                                   std::vector<std::uint32_t>& out) const {
-  if (bounds_.empty()) return;
-  const auto cell_of = [&](double value, double low, int cells) {
-    return static_cast<int>(
-        std::clamp(std::floor((value - low) / cell_m_), -1.0, static_cast<double>(cells)));
-  };
-  const int x0 = std::max(0, cell_of(east_m - reach_m, west_m_, cells_x_));
-  const int x1 = std::min(cells_x_ - 1, cell_of(east_m + reach_m, west_m_, cells_x_));
-  const int y0 = std::max(0, cell_of(north_m - reach_m, south_m_, cells_y_));
-  const int y1 = std::min(cells_y_ - 1, cell_of(north_m + reach_m, south_m_, cells_y_));
-  for (int y = y0; y <= y1; ++y) {
-    for (int x = x0; x <= x1; ++x) {
-      const std::size_t cell = static_cast<std::size_t>(y) * static_cast<std::size_t>(cells_x_) +
-                               static_cast<std::size_t>(x);
-      for (std::uint32_t k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {
-        const std::uint32_t object = cell_objects_[k];
-        const Bounds& b = bounds_[object];
-        // Once per object: in the first cell of its overlap with the queried square.
-        if (x == std::max(x0, b.cell_x0) && y == std::max(y0, b.cell_y0)) out.push_back(object);
-      }
-    }
-  }
+      range_max_m_(timeout_range_m(scan.counter)),
+      grid_(scene) {
+  chunks_.reserve(scene.conductors.size());
+  for (const Conductor& conductor : scene.conductors)
+    chunks_.push_back(conductor_chunks(conductor));
 }
 
 FrameTruthModel::ObjectView FrameTruthModel::view_of(std::uint32_t object,
@@ -278,7 +185,7 @@ FrameTruthModel::ObjectView FrameTruthModel::view_of(std::uint32_t object,
         nearest.add_overall(a, b);
       });
     }
-    if (could_reach(field, to_src(bounds_[object].centre), bounds_[object].radius_m)) {
+    if (could_reach(field, to_src(grid_.sphere(object).centre), grid_.sphere(object).radius_m)) {
       for (const auto& [gap, c] : order) {
         if (gap * gap >= nearest.inside2) break;
         if (!could_reach(field, to_src(chunks[c].centre), chunks[c].radius_m)) continue;
@@ -324,7 +231,7 @@ FrameTruthModel::ObjectView FrameTruthModel::view_of(std::uint32_t object,
   // Objects whose bounding sphere lies wholly outside the field (most of a scene, off to the
   // sides or behind) skip the clipping.
   if (object >= scene.conductors.size() &&
-      could_reach(field, to_src(bounds_[object].centre), bounds_[object].radius_m)) {
+      could_reach(field, to_src(grid_.sphere(object).centre), grid_.sphere(object).radius_m)) {
     nearest.clip(field);
   }
   ObjectView view;
@@ -353,17 +260,17 @@ void FrameTruthModel::frame_truth(std::int64_t frame, const FrameSweep& sweep,
   const FieldOfView field(frame_field(scan_, sweep));
 
   std::vector<std::uint32_t> objects;
-  objects_near(placement.origin_enu_m.x(), placement.origin_enu_m.y(), range_max_m_, objects);
+  grid_.objects_near(placement.origin_enu_m.x(), placement.origin_enu_m.y(), range_max_m_, objects);
   const std::size_t near = objects.size();
   for (const FrameTally::ObjectHit& hit : hits) {
-    if (hit.object < bounds_.size()) objects.push_back(hit.object);
+    if (hit.object < grid_.size()) objects.push_back(hit.object);
   }
   std::sort(objects.begin(), objects.end());
   // Returns per object: the hits' objects, sorted, counted alongside.
   std::vector<std::uint32_t> hit_objects;
   hit_objects.reserve(objects.size() - near);
   for (const FrameTally::ObjectHit& hit : hits) {
-    if (hit.object < bounds_.size()) hit_objects.push_back(hit.object);
+    if (hit.object < grid_.size()) hit_objects.push_back(hit.object);
   }
   std::sort(hit_objects.begin(), hit_objects.end());
   objects.erase(std::unique(objects.begin(), objects.end()), objects.end());
@@ -374,7 +281,7 @@ void FrameTruthModel::frame_truth(std::int64_t frame, const FrameSweep& sweep,
     const auto first_hit = std::lower_bound(hit, hit_end, object);
     const auto returns = static_cast<std::uint64_t>(hit_end - first_hit);
     hit = hit_end;
-    const Bounds& b = bounds_[object];
+    const ObjectGrid::Sphere& b = grid_.sphere(object);
     if (returns == 0 && (b.centre - placement.origin_enu_m).norm() - b.radius_m > range_max_m_) {
       continue;
     }

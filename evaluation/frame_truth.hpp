@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "evaluation/field_of_view.hpp"
+#include "evaluation/object_grid.hpp"
 #include "geometry/scene.hpp"
 #include "io/run/frame_truth.hpp"
 #include "sensor/mounting.hpp"
@@ -54,11 +55,6 @@ class FrameTruthModel final : public FrameTruthSource {
                                    const FieldOfView& field) const;
 
  private:
-  struct Bounds {
-    Eigen::Vector3d centre = Eigen::Vector3d::Zero();  // a bounding sphere
-    double radius_m = 0.0;
-    int cell_x0 = 0, cell_y0 = 0, cell_x1 = 0, cell_y1 = 0;  // the grid cells it overlaps
-  };
   // A run of a conductor's polyline, vertices first..last, in a bounding sphere: the conductor's
   // points are visited chunk by chunk, nearest first, only while a chunk can hold a nearer point.
   struct ConductorChunk {
@@ -68,23 +64,14 @@ class FrameTruthModel final : public FrameTruthSource {
   };
   static constexpr std::uint32_t kChunkSegments = 16;
   [[nodiscard]] static std::vector<ConductorChunk> conductor_chunks(const Conductor& conductor);
-  void build_grid();
-  // Every object whose box overlaps the square of half-width `reach_m` around (east, north), once.
-  void objects_near(double east_m, double north_m, double reach_m,
-                    std::vector<std::uint32_t>& out) const;
 
   const Scene* scene_;
   ScanParams scan_;
   Mount mount_;
   const PoseSource* poses_;
   double range_max_m_ = 0.0;
-  std::vector<Bounds> bounds_;                       // by object index
+  ObjectGrid grid_;
   std::vector<std::vector<ConductorChunk>> chunks_;  // by conductor
-  // The grid: cells of cell_m, cell (x, y) holds entries [cell_start_[c], cell_start_[c + 1]).
-  double west_m_ = 0.0, south_m_ = 0.0, cell_m_ = 1.0;
-  int cells_x_ = 0, cells_y_ = 0;
-  std::vector<std::uint32_t> cell_start_;
-  std::vector<std::uint32_t> cell_objects_;
 };
 
 }  // namespace owsim

@@ -3,16 +3,20 @@
 // flies the same bytes again; truth.csv alone equals the full run's; `owsim pd` over a sweep
 // agrees with an independent recount (tests/oracles/pd_oracle.py: numpy counts, scipy's beta
 // quantiles to 1e-9); physics: with no noise a head-on 5 mm wire is never detected beyond
-// max_detection_range_m and always within it once the wire spans HELLAS's whole scan line; bad
-// criteria and folders are refused in one line with nothing written.
+// max_detection_range_m and always within it once the wire spans HELLAS's whole scan line; `owsim
+// score` matches hand-placed detections (ENU and WGS-84 alike) to the nearest object within the
+// gate, and the whole loop — sweep, the reference detector, score — runs; bad criteria, folders
+// and detection files are refused in one line with nothing written.
 #include <gtest/gtest.h>
 
 #include <fstream>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "cli_runner.hpp"
 #include "evaluation/truth_table.hpp"
+#include "geometry/geodetic_frame.hpp"
 #include "owsim/simulation.hpp"
 #include "python_oracle.hpp"
 #include "sensor/receiver.hpp"
@@ -196,6 +200,158 @@ TEST(EvidenceCli, BadCriteriaAndFoldersAreRefusedInOneLineWithNothingWritten) {
   refused({"pd", "r"}, (work / "r/truth.csv").string().substr(0, 0) + "r/truth.csv");
   std::ofstream(work / "r/truth.csv") << "frame,time_s\n";
   refused({"pd", "r"}, "r/truth.csv:1");
+}
+
+nlohmann::json read_json(const fs::path& path) {
+  return nlohmann::json::parse(test::read_whole_file(path));
+}
+
+const nlohmann::json& object_entry(const nlohmann::json& score, const std::string& id) {
+  for (const nlohmann::json& object : score.at("objects")) {
+    if (object.at("id") == id) return object;
+  }
+  static const nlohmann::json none;
+  ADD_FAILURE() << "no object " << id;
+  return none;
+}
+
+TEST(EvidenceCli, ScoreMatchesEachDetectionToTheNearestObjectWithinTheGate) {
+  const TempDir work("owsim_evidence_score");
+  const auto run = run_cli({"run", (kSource / "examples/pylon_line.yaml").string(), "--out", "r",
+                            "--duration", "8", "--outputs", "summary,truth", "--quiet"},
+                           work.path());
+  ASSERT_EQ(run.exit_status, 0) << run.err;
+  // pylon-2 stands at (0, 0), 3 m wide and 50 m tall; pylon-1 at (−150, −400); the conductors
+  // hang from their tops.
+  const Eigen::Vector3d beside_pylon_2(3.5, 0.0, 30.0);  // 2 m from its surface
+  const Eigen::Vector3d in_the_sky(0.0, 0.0, 300.0);     // nothing within 5 m
+  const Eigen::Vector3d beside_pylon_1(-146.5, -400.0, 10.0);  // below the conductors
+  std::ofstream(work / "enu.csv") << "time_s,e_m,n_m,u_m,class,track,ignored\n"
+                                  << "2.0,3.5,0,30,pole,a,x\n3.0,0,0,300,wire,,\n"
+                                  << "4.0,-146.5,-400,10,pole,b,\n";
+  const LocalFrame frame({48.6881, 10.8447, 450.0});
+  {
+    std::ofstream geodetic(work / "wgs84.csv");
+    geodetic.precision(12);
+    geodetic << "track,lat_deg,lon_deg,h_m,time_s\n";
+    const std::pair<double, Eigen::Vector3d> rows[] = {
+        {2.0, beside_pylon_2}, {3.0, in_the_sky}, {4.0, beside_pylon_1}};
+    for (const auto& [time, enu] : rows) {
+      const Geodetic g = frame.geodetic_from_enu(enu);
+      geodetic << "t," << g.lat_deg << ',' << g.lon_deg << ',' << g.h_m << ',' << time << '\n';
+    }
+  }
+  const auto score = run_cli({"score", "r", "--detections", "enu.csv", "--quiet"}, work.path());
+  ASSERT_EQ(score.exit_status, 0) << score.err;
+  const nlohmann::json json = read_json(work / "r/score.json");
+  EXPECT_EQ(json.at("detections"), 3);
+  EXPECT_EQ(json.at("false_alarms"), 1);
+  EXPECT_EQ(json.at("interval"), "clopper-pearson");
+  const nlohmann::json& pylon_2 = object_entry(json, "pylon-2");
+  EXPECT_TRUE(pylon_2.at("detected").get<bool>());
+  EXPECT_DOUBLE_EQ(pylon_2.at("first_detection_s").get<double>(), 2.0);
+  EXPECT_TRUE(object_entry(json, "pylon-1").at("detected").get<bool>());
+  EXPECT_FALSE(object_entry(json, "pylon-3").at("detected").get<bool>());
+  // The warning time runs to the closest approach in truth.csv.
+  const std::vector<ObjectTrack> tracks = read_truth_csv(
+      work / "r/truth.csv", [](std::string_view id, std::string_view) { return id == "pylon-2"; });
+  ASSERT_EQ(tracks.size(), 1u);
+  const auto closest = std::min_element(
+      tracks[0].rows.begin(), tracks[0].rows.end(),
+      [](const TruthEntry& a, const TruthEntry& b) { return a.range_m < b.range_m; });
+  EXPECT_NEAR(pylon_2.at("warning_time_s").get<double>(), closest->time_s - 2.0, 1e-9);
+  const auto at_two = std::min_element(tracks[0].rows.begin(), tracks[0].rows.end(),
+                                       [](const TruthEntry& a, const TruthEntry& b) {
+                                         return std::abs(a.time_s - 2.0) < std::abs(b.time_s - 2.0);
+                                       });
+  EXPECT_NEAR(pylon_2.at("first_detection_range_m").get<double>(), at_two->range_m, 10.0);
+  EXPECT_EQ(json.at("confusion").at("pole").at("pole"), 2);
+  EXPECT_EQ(json.at("confusion").at("none").at("wire"), 1);
+  const double hours = json.at("flight_hours").get<double>();
+  EXPECT_NEAR(hours, 24 * 0.3330333327878778 / 3600.0, 1e-12);
+  EXPECT_NEAR(json.at("false_alarms_per_hour").get<double>(), 1.0 / hours, 1e-6);
+  const auto csv = csv_rows(work / "r/score.csv");
+  ASSERT_EQ(csv.size(), 4u);
+  EXPECT_EQ(csv[1][column(csv[0], "object")], "pylon-2");
+  EXPECT_EQ(csv[1][column(csv[0], "distance_m")], "2.000");
+  EXPECT_EQ(csv[2][column(csv[0], "object")], "");
+  EXPECT_EQ(csv[3][column(csv[0], "object")], "pylon-1");
+  EXPECT_EQ(csv[3][column(csv[0], "distance_m")], "2.000");
+
+  // The same detections in WGS-84 match the same objects at the same distances.
+  const auto geodetic =
+      run_cli({"score", "r", "--detections", "wgs84.csv", "--out", "g", "--quiet"}, work.path());
+  ASSERT_EQ(geodetic.exit_status, 0) << geodetic.err;
+  const auto same = csv_rows(work / "g/score.csv");
+  ASSERT_EQ(same.size(), 4u);
+  for (std::size_t r = 1; r < 4; ++r) {
+    EXPECT_EQ(same[r][column(same[0], "object")], csv[r][column(csv[0], "object")]);
+    EXPECT_EQ(same[r][column(same[0], "distance_m")], csv[r][column(csv[0], "distance_m")]);
+  }
+  EXPECT_EQ(read_json(work / "g/score.json").at("false_alarms"), 1);
+}
+
+TEST(EvidenceCli, SweepDetectorAndScoreRunAsOneLoop) {
+  const TempDir work("owsim_evidence_loop");
+  std::ofstream(work / "sweep.yaml")
+      << "base: " << (kSource / "examples/pylon_line.yaml").string() << "\n"
+      << "count: 3\nseed: 11\noutputs: csv,summary,truth\nvary:\n"
+      << "  trajectory.waypoints.speed_mps: {uniform: [40, 60]}\n"
+      << "  trajectory.duration_s: {values: [6]}\n"
+      << "  seed: {member: true}\n";
+  const auto sweep = run_cli({"sweep", "sweep.yaml", "--out", "campaign", "--quiet"}, work.path());
+  ASSERT_EQ(sweep.exit_status, 0) << sweep.err;
+  test::run_python_file(
+      kSource / "examples/detectors/elevated_returns.py",
+      {.arguments = (work / "campaign").string() + " " + (work / "detections").string()});
+  for (const char* member : {"0", "1", "2"}) {
+    EXPECT_TRUE(fs::exists(work / "detections" / (std::string(member) + ".csv"))) << member;
+  }
+  const auto score =
+      run_cli({"score", "campaign", "--detections", "detections", "--quiet"}, work.path());
+  ASSERT_EQ(score.exit_status, 0) << score.err;
+  const nlohmann::json json = read_json(work / "campaign/score.json");
+  EXPECT_EQ(json.at("flights"), 3);
+  // The reference detector finds the pylons and some wires.
+  EXPECT_GE(json.at("by_class").at("pole").at("detected").get<int>(), 3);
+  EXPECT_GE(json.at("by_class").at("wire").at("detected").get<int>(), 3);
+  std::size_t detections = 0;
+  for (const char* member : {"0", "1", "2"}) {
+    detections += csv_rows(work / "detections" / (std::string(member) + ".csv")).size() - 1;
+  }
+  EXPECT_EQ(json.at("detections").get<std::size_t>(), detections);
+  EXPECT_EQ(csv_rows(work / "campaign/score.csv").size(), detections + 1);
+  // Pd versus range has the class's objects in its nearest bin.
+  const nlohmann::json& wires = json.at("by_class").at("wire");
+  EXPECT_EQ(wires.at("pd_by_range").at(0).at("objects"), wires.at("objects"));
+}
+
+TEST(EvidenceCli, BadDetectionsAreRefusedInOneLineWithNothingWritten) {
+  const TempDir work("owsim_evidence_score_errors");
+  const auto run = run_cli({"run", (kSource / "examples/single_span.yaml").string(), "--out", "r",
+                            "--duration", "2", "--outputs", "summary,truth", "--quiet"},
+                           work.path());
+  ASSERT_EQ(run.exit_status, 0) << run.err;
+  const auto refused = [&](const std::string& text, const std::string& starts,
+                           std::vector<std::string> extra = {}) {
+    std::ofstream(work / "d.csv") << text;
+    std::vector<std::string> arguments = {"score", "r", "--detections", "d.csv"};
+    arguments.insert(arguments.end(), extra.begin(), extra.end());
+    const auto result = run_cli(arguments, work.path());
+    EXPECT_NE(result.exit_status, 0) << text;
+    EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
+    EXPECT_EQ(result.err.rfind("owsim: " + starts, 0), 0u) << result.err;
+    EXPECT_FALSE(fs::exists(work / "r/score.json")) << text;
+  };
+  refused("time_s,e_m,n_m\n1,2,3\n", "d.csv:1");
+  refused("time_s,e_m,n_m,u_m\n1,2,3,4\n1,x,3,4\n", "d.csv:3: e_m");
+  refused("time_s,e_m,n_m,u_m\n1,2,3,inf\n", "d.csv:2: u_m");
+  refused("time_s,lat_deg,lon_deg,h_m\n1,91,3,4\n", "d.csv:2");
+  refused("time_s,e_m,n_m,u_m\n1,2,3\n", "d.csv:2: u_m");
+  refused("time_s,e_m,n_m,u_m\n", "--gate-m", {"--gate-m", "0"});
+  fs::create_directories(work / "folder");
+  const auto folder = run_cli({"score", "r", "--detections", "folder"}, work.path());
+  EXPECT_EQ(folder.err.rfind("owsim: --detections", 0), 0u) << folder.err;
 }
 
 }  // namespace

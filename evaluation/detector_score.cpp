@@ -1,0 +1,280 @@
+#include "evaluation/detector_score.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <unordered_map>
+
+#include "evaluation/detections_csv.hpp"
+#include "evaluation/object_distance.hpp"
+#include "evaluation/object_grid.hpp"
+#include "evaluation/truth_table.hpp"
+#include "geometry/error.hpp"
+#include "io/files/atomic_output_file.hpp"
+#include "io/files/csv_cells.hpp"
+#include "io/files/json_text.hpp"
+#include "io/scenario/scenario_loader.hpp"
+#include "io/scenario/scene_builder.hpp"
+#include "io/trajectory/trajectory_loader.hpp"
+#include "owsim/version.hpp"
+
+namespace owsim {
+namespace {
+
+constexpr std::string_view kScoreCsvHeader =
+    "flight,line,time_s,e_m,n_m,u_m,class,track,object,object_class,distance_m";
+
+// One flight scored: its objects, false alarms, and score.csv rows appended to `rows`.
+struct FlightScore {
+  std::vector<ScoredObject> objects;
+  std::uint64_t detections = 0;
+  std::uint64_t false_alarms = 0;
+  double hours = 0.0;
+};
+
+FlightScore score_flight(const CampaignFlight& flight, const std::filesystem::path& detections,
+                         const ScoreOptions& options, ScoreReport& report, std::string& rows) {
+  const std::filesystem::path scenario_file = flight.directory / "scenario.yaml";
+  std::error_code error;
+  if (!std::filesystem::exists(scenario_file, error)) {
+    throw input_error(scenario_file.string(),
+                      "missing: score needs the scenario the run flew (runs of this owsim write "
+                      "it)");
+  }
+  const Scenario scenario = load_scenario(scenario_file);
+  const LocalFrame frame(scenario.origin);
+  const Scene scene = build_scene(scenario);
+  const Trajectory trajectory = load_trajectory(scenario, frame);
+  const ObjectGrid grid(scene);
+  const FlightFacts facts = read_flight_facts(flight.directory / "summary.json");
+  const std::vector<ObjectTrack> tracks = read_truth_csv(
+      flight.directory / "truth.csv", [](std::string_view, std::string_view) { return true; });
+  const std::vector<Detection> found = read_detections_csv(detections, frame);
+
+  FlightScore score;
+  score.hours = facts.flight_s() / 3600.0;
+  score.detections = found.size();
+  // The objects by index, in scene order.
+  const std::size_t count = named_object_count(scene);
+  std::unordered_map<std::string, std::uint32_t> index_of;
+  for (std::uint32_t object = 0; object < count; ++object) {
+    index_of.emplace(named_object_id(scene, object), object);
+  }
+  std::vector<std::optional<double>> first_hit_s(count);
+  std::vector<std::uint32_t> candidates;
+  for (const Detection& detection : found) {
+    candidates.clear();
+    grid.objects_near(detection.enu_m.x(), detection.enu_m.y(), options.gate_m, candidates);
+    std::optional<std::uint32_t> hit;
+    double hit_distance = std::numeric_limits<double>::infinity();
+    for (const std::uint32_t object : candidates) {
+      const double distance = distance_to_object_m(scene, object, detection.enu_m);
+      if (distance <= options.gate_m && distance < hit_distance) {
+        hit = object;
+        hit_distance = distance;
+      }
+    }
+    const std::string true_class =
+        hit ? std::string(to_string(named_object_class(scene, *hit))) : std::string("none");
+    if (hit) {
+      std::optional<double>& first = first_hit_s[*hit];
+      if (!first || detection.time_s < *first) first = detection.time_s;
+    } else {
+      ++score.false_alarms;
+    }
+    if (!detection.object_class.empty()) ++report.confusion[true_class][detection.object_class];
+    rows += csv_cell(flight.name);
+    rows += ',';
+    append_csv_integer(rows, detection.line);
+    rows += ',';
+    append_csv_fixed(rows, detection.time_s, 6);
+    for (int axis = 0; axis < 3; ++axis) {
+      rows += ',';
+      append_csv_fixed(rows, detection.enu_m[axis], 3);
+    }
+    rows += ',' + csv_cell(detection.object_class) + ',' + csv_cell(detection.track) + ',';
+    if (hit) {
+      rows += csv_cell(named_object_id(scene, *hit)) + ',' + true_class + ',';
+      append_csv_fixed(rows, hit_distance, 3);
+    } else {
+      rows += ",,";
+    }
+    rows += '\n';
+  }
+
+  // Every object the truth names (within range at some frame), and any other one detected.
+  std::vector<bool> listed(count, false);
+  const auto scored = [&](std::uint32_t object, const ObjectTrack* track) {
+    ScoredObject out;
+    out.flight = flight.name;
+    out.id = named_object_id(scene, object);
+    out.object_class = to_string(named_object_class(scene, object));
+    std::optional<double> closest_s;
+    double closest_m = std::numeric_limits<double>::infinity();
+    if (track != nullptr) {
+      for (const TruthEntry& row : track->rows) {
+        if (row.in_view) {
+          out.in_view = true;
+          out.farthest_in_view_m = std::max(out.farthest_in_view_m, row.range_m);
+        }
+        if (row.range_m < closest_m) {
+          closest_m = row.range_m;
+          closest_s = row.time_s;
+        }
+      }
+    }
+    if (const std::optional<double>& first = first_hit_s[object]) {
+      out.detected = true;
+      out.first_detection_s = *first;
+      const SensorPlacement placement =
+          sensor_placement(trajectory.pose_at(*first), scenario.mount, scenario.scan.model);
+      out.first_detection_range_m = distance_to_object_m(scene, object, placement.origin_enu_m);
+      if (closest_s) out.warning_time_s = *closest_s - *first;
+    }
+    return out;
+  };
+  for (const ObjectTrack& track : tracks) {
+    const auto found_index = index_of.find(track.id);
+    if (found_index == index_of.end()) {
+      throw input_error((flight.directory / "truth.csv").string(),
+                        "object '" + track.id + "' is not in " + scenario_file.string());
+    }
+    listed[found_index->second] = true;
+    score.objects.push_back(scored(found_index->second, &track));
+  }
+  for (std::uint32_t object = 0; object < count; ++object) {
+    if (!listed[object] && first_hit_s[object]) score.objects.push_back(scored(object, nullptr));
+  }
+  return score;
+}
+
+nlohmann::json interval_json(std::uint64_t hits, std::uint64_t count,
+                             const ProportionInterval& interval) {
+  const auto number = [](double value) {
+    return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
+  };
+  return {{"pd", count > 0 ? nlohmann::json(static_cast<double>(hits) / static_cast<double>(count))
+                           : nlohmann::json(nullptr)},
+          {"pd_lo", number(interval.lower)},
+          {"pd_hi", number(interval.upper)}};
+}
+
+nlohmann::json score_json(const ScoreReport& report, const ScoreOptions& options) {
+  nlohmann::json objects = nlohmann::json::array();
+  for (const ScoredObject& object : report.objects) {
+    nlohmann::json entry = {{"flight", object.flight},
+                            {"id", object.id},
+                            {"class", object.object_class},
+                            {"in_view", object.in_view},
+                            {"detected", object.detected},
+                            {"first_detection_s", nullptr},
+                            {"first_detection_range_m", nullptr},
+                            {"warning_time_s", nullptr}};
+    if (object.detected) {
+      entry["first_detection_s"] = object.first_detection_s;
+      entry["first_detection_range_m"] = object.first_detection_range_m;
+      if (object.warning_time_s) entry["warning_time_s"] = *object.warning_time_s;
+    }
+    objects.push_back(std::move(entry));
+  }
+  nlohmann::json by_class = nlohmann::json::object();
+  for (const auto& [name, score] : report.by_class) {
+    nlohmann::json entry = {{"objects", score.objects}, {"detected", score.detected}};
+    entry.update(interval_json(score.detected, score.objects, score.interval));
+    nlohmann::json by_range = nlohmann::json::array();
+    for (const PdBin& bin : score.by_range) {
+      nlohmann::json row = {{"range_lo_m", bin.range_lo_m},
+                            {"range_hi_m", bin.range_hi_m},
+                            {"objects", bin.trials},
+                            {"detected", bin.trials_detected}};
+      row.update(interval_json(bin.trials_detected, bin.trials, bin.cumulative_interval));
+      by_range.push_back(std::move(row));
+    }
+    entry["pd_by_range"] = std::move(by_range);
+    by_class[name] = std::move(entry);
+  }
+  return {{"flights", report.flights},
+          {"gate_m", options.gate_m},
+          {"confidence", options.confidence},
+          {"interval", kIntervalMethod},
+          {"detections", report.detections},
+          {"false_alarms", report.false_alarms},
+          {"flight_hours", report.flight_hours},
+          {"false_alarms_per_hour",
+           report.flight_hours > 0.0
+               ? nlohmann::json(static_cast<double>(report.false_alarms) / report.flight_hours)
+               : nlohmann::json(nullptr)},
+          {"by_class", by_class},
+          {"confusion", report.confusion},
+          {"objects", objects},
+          {"definitions", "docs/evidence.md (owsim " + std::string(version_string) + ")"}};
+}
+
+void write_file(const std::filesystem::path& path, std::string_view text) {
+  AtomicOutputFile file(path);
+  file.write(text);
+  file.commit();
+}
+
+}  // namespace
+
+ScoreReport write_score_report(const ScoreOptions& options) {
+  if (!(options.gate_m > 0.0 && options.gate_m <= 1000.0)) {
+    throw input_error("--gate-m", "must lie in (0, 1000] m");
+  }
+  validate(DetectionCriterion{}, options.bins, options.confidence);
+  ScoreReport report;
+  report.directory = options.out ? *options.out : options.folder;
+  const std::vector<CampaignFlight> flights = campaign_flights(options.folder);
+  report.flights = flights.size();
+  const bool sweep = std::filesystem::is_regular_file(options.folder / "sweep.csv");
+  std::error_code error;
+  if (sweep != std::filesystem::is_directory(options.detections, error)) {
+    throw input_error("--detections",
+                      sweep ? "a sweep folder is scored from a folder of <member>.csv files"
+                            : "a run folder is scored from one detections file");
+  }
+  std::string rows(kScoreCsvHeader);
+  rows += '\n';
+  std::map<std::string, std::vector<Trial>> trials;
+  for (const CampaignFlight& flight : flights) {
+    const std::filesystem::path file =
+        sweep ? options.detections / (flight.name + ".csv") : options.detections;
+    if (sweep && !std::filesystem::exists(file, error)) {
+      throw input_error(file.string(), "missing: no detections file for member " + flight.name);
+    }
+    FlightScore score = score_flight(flight, file, options, report, rows);
+    report.detections += score.detections;
+    report.false_alarms += score.false_alarms;
+    report.flight_hours += score.hours;
+    for (ScoredObject& object : score.objects) {
+      if (object.in_view) {
+        ClassScore& of_class = report.by_class[object.object_class];
+        ++of_class.objects;
+        if (object.detected) ++of_class.detected;
+        trials[object.object_class].push_back(
+            {object.farthest_in_view_m,
+             object.detected ? std::optional(object.first_detection_range_m) : std::nullopt});
+      }
+      report.objects.push_back(std::move(object));
+    }
+  }
+  for (auto& [name, score] : report.by_class) {
+    score.interval = clopper_pearson(score.detected, score.objects, options.confidence);
+    score.by_range = empty_bins(options.bins);
+    add_trials(trials[name], score.by_range);
+    set_intervals(score.by_range, options.confidence);
+  }
+  std::filesystem::create_directories(report.directory, error);
+  if (error) {
+    throw file_error(report.directory.string(),
+                     "cannot create the output folder: " + error.message());
+  }
+  const std::string json = json_text(score_json(report, options), 2) + "\n";
+  write_file(report.directory / "score.csv", rows);
+  write_file(report.directory / "score.json", json);
+  return report;
+}
+
+}  // namespace owsim
