@@ -8,6 +8,7 @@
 #include "io/report/flight_folder.hpp"
 #include "io/report/report_cloud.hpp"
 #include "io/report/report_frames.hpp"
+#include "io/report/report_evidence.hpp"
 #include "io/report/report_page.hpp"
 #include "io/report/report_points.hpp"
 #include "io/report/report_scene.hpp"
@@ -190,6 +191,13 @@ class PageAssembly {
     meta_["objects_total"] = read.objects_total;
   }
 
+  // owsim pd's and owsim score's files, when they were written into the folder.
+  void add_evidence() {
+    const json evidence = report_evidence_json(folder_.directory, options_.max_objects);
+    meta_["pd"] = evidence["pd"];
+    meta_["score"] = evidence["score"];
+  }
+
   void add_scene() {
     meta_["scene"] = nullptr;
     if (!options_.scenario) {
@@ -334,6 +342,7 @@ FlightReport write_flight_report(const std::filesystem::path& folder,
   }
   PageAssembly page(found, with_scenario);
   page.add_summary();
+  page.add_evidence();
   page.add_scene();
   page.add_trajectory();
   page.read_points();

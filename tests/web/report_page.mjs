@@ -3,7 +3,7 @@
 // summary and its sortable ground-truth table, the frame player's slider and play button, the
 // map's zoom and furniture, the 3D view's orbit; screenshots of each panel in SHOT_DIR.
 //   node tests/web/report_page.mjs REPORT.html SHOT_DIR [--expect-frames] [--expect-objects]
-//        [--expect-wires] [--expect-empty] [--max-ready-ms N]
+//        [--expect-wires] [--expect-empty] [--expect-evidence] [--max-ready-ms N]
 // Prints one JSON line of measurements; exits non-zero with the failed checks listed.
 import { createRequire } from 'node:module';
 import { mkdirSync, writeFileSync } from 'node:fs';
@@ -144,6 +144,22 @@ if (expectedNote) {
 }
 const summaryPng = await shoot('#summary', 'summary');
 check(pixelStats(summaryPng).colours > 10, 'summary screenshot not blank');
+
+// 1b. Detection evidence (owsim pd and owsim score wrote into the folder), or none.
+if (has('--expect-evidence')) {
+  const curve = await page.locator('#pd-window').getAttribute('points');
+  const points = (curve ?? '').trim().split(/\s+/).filter(Boolean).length;
+  check(points >= 3, `the Pd curve has points (${points})`);
+  check(await page.locator('#pd-plot polygon').count() === 2, 'both curves have their bands');
+  const demonstrated = await page.locator('#pd-demonstrated').innerText();
+  check(/Pd ≥ 0\.995/.test(demonstrated), 'the demonstrated ranges are listed');
+  const byClass = await page.locator('#score-by-class').innerText();
+  check(/wire/.test(byClass) && /%/.test(byClass), `the detector's Pd by class (${byClass})`);
+  check(await page.locator('#score-confusion tr').count() >= 2, 'the confusion table');
+  check(pixelStats(await shoot('#evidence', 'evidence')).colours > 10, 'evidence screenshot not blank');
+} else {
+  check(await page.locator('#evidence').count() === 0, 'no evidence section without pd or score files');
+}
 
 // 2. Frame player.
 let frameStats = null;

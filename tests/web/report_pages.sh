@@ -16,10 +16,15 @@ mkdir -p "$out" "$shots"
 cd "$root"
 page() { node "$root/tests/web/report_page.mjs" "$@"; }
 
-# 1. A simulated run: summary, ground truth, frames with wire marks, map, 3D with the scene.
+# 1. A simulated run: summary, ground truth, frames with wire marks, map, 3D with the scene, and
+#    the detection evidence of its wires and of the reference detector.
 "$owsim" run examples/corridor.yaml --out "$out/corridor" --frames 90 --quiet
+"$owsim" pd "$out/corridor" --class wire --quiet
+/usr/bin/python3 examples/detectors/elevated_returns.py "$out/corridor" "$out/corridor_detections.csv"
+"$owsim" score "$out/corridor" --detections "$out/corridor_detections.csv" --quiet
 "$owsim" view "$out/corridor" --scenario examples/corridor.yaml --quiet
-page "$out/corridor/report.html" "$shots/corridor" --expect-frames --expect-objects --expect-wires
+page "$out/corridor/report.html" "$shots/corridor" --expect-frames --expect-objects --expect-wires \
+  --expect-evidence
 
 # 2. Its words decoded without labels, viewed without the scenario: what real data gives.
 "$owsim" decode "$out/corridor/flight.d64" --scenario examples/corridor.yaml --no-labels \
@@ -43,7 +48,7 @@ page "$out/las_only/report.html" "$shots/las_only" --expect-objects \
 
 # 5. A budget smaller than the flight: thinned, and the page says how.
 "$owsim" view "$out/corridor" --out "$out/thinned.html" --max-points 50000 --max-frames 7 --quiet
-page "$out/thinned.html" "$shots/thinned" --expect-frames --expect-objects \
+page "$out/thinned.html" "$shots/thinned" --expect-frames --expect-objects --expect-evidence \
   --expect-note "The 3D view shows 50,000 of"
 
 # 6. Not an owsim folder: one line, non-zero, nothing written.

@@ -1,8 +1,9 @@
 // The page `owsim view` writes (owsim/flight_report.hpp): reads what the page carries and builds
-// its four sections. Any failure shows as a message in the page, never as a blank or half page.
+// its four sections, and a fifth with the detection evidence when the folder holds it. Any failure shows as a message in the page, never as a blank or half page.
 import style from './report.css';
 import { cloudStep, inflateBlob, readMeta, unpackCloud } from './data.js';
 import { cloudSection } from './cloud3d.js';
+import { evidenceSection } from './evidence.js';
 import { framesSection } from './frames.js';
 import { mapSection } from './map.js';
 import { el, summarySection } from './summary.js';
@@ -15,7 +16,8 @@ async function main() {
   root.append(el('header', {},
     el('h1', {}, `owsim — ${meta.title}`),
     el('p', { class: 'generator' }, `${meta.generator} · ${meta.sensor.model}${meta.scenario_file ? ` · scenario ${meta.scenario_file}` : ''}`),
-    el('nav', {}, ...[['summary', 'Summary'], ['frames', 'Frame player'], ['map', 'Map'], ['cloud', '3D view']]
+    el('nav', {}, ...[['summary', 'Summary'], ['frames', 'Frame player'], ['map', 'Map'], ['cloud', '3D view'],
+      ...(meta.pd || meta.score ? [['evidence', 'Detection evidence']] : [])]
       .map(([id, label]) => el('a', { href: `#${id}` }, label)))));
   const report = { meta };
   window.owsimReport = report;
@@ -51,6 +53,12 @@ async function main() {
     report.orbit = view.orbit;
   } catch (error) {
     fail('3D view', error);
+  }
+  try {
+    const evidence = evidenceSection(meta);
+    if (evidence) root.append(evidence);
+  } catch (error) {
+    fail('detection evidence', error);
   }
   report.readyMs = performance.now() - started;
   document.body.dataset.ready = '1';
