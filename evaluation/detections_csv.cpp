@@ -40,13 +40,7 @@ std::vector<Detection> read_detections_csv(const std::filesystem::path& path,
   std::vector<Detection> detections;
   std::vector<std::string_view> cells;
   bool geodetic = false;
-  std::size_t begin = 0;
-  for (std::int64_t line = 1; begin < text.size(); ++line) {
-    std::size_t end = text.find('\n', begin);
-    if (end == std::string::npos) end = text.size();
-    std::string_view row(text.data() + begin, end - begin);
-    begin = end + 1;
-    if (!row.empty() && row.back() == '\r') row.remove_suffix(1);
+  for_each_line(text, [&](std::int64_t line, std::string_view row) {
     const std::string where = path.string() + ":" + std::to_string(line);
     if (line == 1) {
       split_csv_cells(row, cells);
@@ -65,9 +59,9 @@ std::vector<Detection> read_detections_csv(const std::filesystem::path& path,
                           "the header needs time_s and either e_m,n_m,u_m or lat_deg,lon_deg,h_m "
                           "(optionally class, track)");
       }
-      continue;
+      return;
     }
-    if (row.empty()) continue;
+    if (row.empty()) return;
     split_csv_cells(row, cells);
     const auto cell = [&](Column c) -> std::string_view {
       if (*position[c] >= cells.size()) {
@@ -104,7 +98,7 @@ std::vector<Detection> read_detections_csv(const std::filesystem::path& path,
       }
     }
     detections.push_back(std::move(detection));
-  }
+  });
   if (position[kTime] == std::nullopt) throw input_error(path.string(), "empty: no header");
   return detections;
 }

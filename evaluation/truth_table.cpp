@@ -61,20 +61,15 @@ std::vector<CampaignFlight> campaign_flights(const std::filesystem::path& direct
     const std::string text = read_input_file(table, "sweep table", kMaxSweepTableBytes);
     std::vector<std::int64_t> numbers;
     std::vector<std::string_view> cells;
-    std::size_t begin = 0;
-    for (std::size_t line = 1; begin < text.size(); ++line) {
-      std::size_t end = text.find('\n', begin);
-      if (end == std::string::npos) end = text.size();
-      const std::string_view row(text.data() + begin, end - begin);
-      begin = end + 1;
+    for_each_line(text, [&](std::int64_t line, std::string_view row) {
       if (line == 1) {
         split_csv_cells(row, cells);
         if (cells.empty() || cells.front() != "member") {
           throw input_error(table.string() + ":1", "not an owsim sweep table (no member column)");
         }
-        continue;
+        return;
       }
-      if (row.empty()) continue;
+      if (row.empty()) return;
       split_csv_cells(row, cells);
       const std::string_view member = cells.front();
       std::int64_t number = -1;
@@ -85,7 +80,7 @@ std::vector<CampaignFlight> campaign_flights(const std::filesystem::path& direct
                           "member '" + std::string(member) + "' is not a member number");
       }
       numbers.push_back(number);
-    }
+    });
     if (numbers.empty()) throw input_error(table.string(), "lists no member");
     // Member folders are named as owsim sweep names them: zero-padded to the widest number.
     const auto count = static_cast<std::int64_t>(numbers.size());

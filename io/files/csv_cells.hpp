@@ -26,6 +26,21 @@ void append_csv_integer(std::string& out, std::int64_t value);
 // The cell for `text`: unchanged, or in double quotes with quotes doubled if it holds a comma,
 // a double quote, CR or LF (RFC 4180).
 [[nodiscard]] std::string csv_cell(std::string_view text);
+// Calls visit(line, row) for each line of `text`: line numbers from 1, rows without their "\n" or
+// "\r\n". Text after the last line break is a line too.
+template <typename Visit>
+void for_each_line(std::string_view text, Visit&& visit) {
+  std::size_t begin = 0;
+  for (std::int64_t line = 1; begin < text.size(); ++line) {
+    std::size_t end = text.find('\n', begin);
+    if (end == std::string_view::npos) end = text.size();
+    std::string_view row = text.substr(begin, end - begin);
+    begin = end + 1;
+    if (!row.empty() && row.back() == '\r') row.remove_suffix(1);
+    visit(line, row);
+  }
+}
+
 // Splits one line (no line break) into `cells` at the commas outside double quotes; a quoted cell
 // is returned with its quotes, as written. Reading owsim's own files back (`owsim view`).
 void split_csv_cells(std::string_view line, std::vector<std::string_view>& cells);

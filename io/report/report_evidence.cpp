@@ -19,8 +19,8 @@ nlohmann::json parse_json(const std::filesystem::path& path, std::string_view wh
   try {
     return nlohmann::json::parse(read_input_file(path, what, kMaxEvidenceBytes));
   } catch (const nlohmann::json::exception& e) {
-    throw input_error(path.string(), std::string("not an owsim ") + std::string(what) + ": " +
-                                         e.what());
+    throw input_error(path.string(),
+                      std::string("not an owsim ") + std::string(what) + ": " + e.what());
   }
 }
 
@@ -29,17 +29,11 @@ nlohmann::json pd_bins(const std::filesystem::path& path) {
   const std::string text = read_input_file(path, "pd table", kMaxEvidenceBytes);
   nlohmann::json bins = nlohmann::json::array();
   std::vector<std::string_view> cells;
-  std::size_t begin = 0;
-  for (std::size_t line = 1; begin < text.size(); ++line) {
-    std::size_t end = text.find('\n', begin);
-    if (end == std::string::npos) end = text.size();
-    const std::string_view row(text.data() + begin, end - begin);
-    begin = end + 1;
-    if (line == 1 || row.empty()) continue;
+  for_each_line(text, [&](std::int64_t line, std::string_view row) {
+    if (line == 1 || row.empty()) return;
     split_csv_cells(row, cells);
-    if (cells.size() != kPdColumns) {
-      throw input_error(path.string() + ":" + std::to_string(line), "not a row of owsim pd");
-    }
+    const std::string where = path.string() + ":" + std::to_string(line);
+    if (cells.size() != kPdColumns) throw input_error(where, "not a row of owsim pd");
     nlohmann::json numbers = nlohmann::json::array();
     for (std::size_t c = 1; c < kPdColumns; ++c) {
       double value = 0.0;
@@ -49,20 +43,19 @@ nlohmann::json pd_bins(const std::filesystem::path& path) {
         numbers.push_back(nullptr);
       } else if (error != std::errc() || stop != cells[c].data() + cells[c].size() ||
                  !std::isfinite(value)) {
-        throw input_error(path.string() + ":" + std::to_string(line), "not a row of owsim pd");
+        throw input_error(where, "not a row of owsim pd");
       } else {
         numbers.push_back(value);
       }
     }
     bins.push_back(std::move(numbers));
-  }
+  });
   return bins;
 }
 
 }  // namespace
 
-nlohmann::json report_evidence_json(const std::filesystem::path& folder,
-                                    std::size_t max_objects) {
+nlohmann::json report_evidence_json(const std::filesystem::path& folder, std::size_t max_objects) {
   nlohmann::json evidence = {{"pd", nullptr}, {"score", nullptr}};
   std::error_code error;
   if (std::filesystem::is_regular_file(folder / "pd.json", error) &&
