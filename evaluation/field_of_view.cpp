@@ -161,6 +161,21 @@ double nearest_on_segment(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1) 
   return std::clamp(-p0.dot(d) / length2, 0.0, 1.0);
 }
 
+bool FieldOfView::may_hold_sphere(const Eigen::Vector3d& centre_src, double radius_m) const {
+  const double distance = centre_src.norm();
+  if (distance - radius_m > field_.range_max_m) return false;
+  if (distance <= radius_m) return true;  // around the sensor
+  // Wholly beyond one of the β planes (b·cos β₁ − c·sin β₁ ≥ 0, c·sin β₂ − b·cos β₂ ≥ 0; unit
+  // normals).
+  if (centre_src.z() * cos_beta_min_ - centre_src.x() * sin_beta_min_ < -radius_m) return false;
+  if (centre_src.x() * sin_beta_max_ - centre_src.z() * cos_beta_max_ < -radius_m) return false;
+  // Wholly above or below the α bounds: the centre's α more than the angular radius away.
+  const double spread = std::asin(radius_m / distance);
+  const double alpha = std::asin(std::clamp(centre_src.y() / distance, -1.0, 1.0));
+  return alpha + spread >= field_.alpha_min_deg * kRadPerDeg &&
+         alpha - spread <= field_.alpha_max_deg * kRadPerDeg;
+}
+
 std::optional<double> FieldOfView::nearest_inside(const Eigen::Vector3d& p0,
                                                   const Eigen::Vector3d& p1) const {
   const Eigen::Vector3d d = p1 - p0;

@@ -43,6 +43,9 @@ class FieldOfView {
   [[nodiscard]] const ScanField& field() const { return field_; }
   // True when the sensor-frame offset lies in the field (boundary included).
   [[nodiscard]] bool contains(const Eigen::Vector3d& v_src) const;
+  // False when a sphere (centre as a sensor-frame offset) lies wholly outside the field; true may
+  // still find nothing inside. The β bounds as planes, α and range by the sphere's angular radius.
+  [[nodiscard]] bool may_hold_sphere(const Eigen::Vector3d& centre_src, double radius_m) const;
   // The nearest point to the sensor of segment p0–p1 (sensor-frame offsets, SRC axes) inside the
   // field, as its parameter t ∈ [0, 1] along p0 → p1; std::nullopt when no part of it is inside.
   [[nodiscard]] std::optional<double> nearest_inside(const Eigen::Vector3d& p0,

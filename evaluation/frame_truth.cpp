@@ -74,26 +74,7 @@ class NearestPoints {
 // range, or farther in α or β than its angular radius allows. Conservative: true may still find
 // nothing inside.
 bool could_reach(const FieldOfView& field, const Eigen::Vector3d& centre_src, double radius_m) {
-  const ScanField& f = field.field();
-  const double distance = centre_src.norm();
-  if (distance - radius_m > f.range_max_m) return false;
-  if (distance <= radius_m * 1.0001 + 1e-6) return true;  // around the sensor
-  constexpr double kDegPerRad = 180.0 / 3.14159265358979323846;
-  const double spread_deg = std::asin(radius_m / distance) * kDegPerRad;
-  const FieldAngles angles = field_angles(centre_src);
-  if (angles.alpha_deg + spread_deg < f.alpha_min_deg ||
-      angles.alpha_deg - spread_deg > f.alpha_max_deg) {
-    return false;
-  }
-  // β of points within the cone of half-angle `spread` about the centre: |Δβ| ≤
-  // asin(sin spread / cos α); in doubt (the cone reaches the fiber axis, or the centre is behind
-  // the sensor where β wraps), keep it.
-  const double sin_spread = radius_m / distance;
-  const double cos_alpha = std::cos(angles.alpha_deg / kDegPerRad);
-  if (sin_spread >= cos_alpha || centre_src.x() <= 0.0) return true;
-  const double beta_spread = std::asin(sin_spread / cos_alpha) * kDegPerRad;
-  return angles.beta_deg + beta_spread >= f.beta_min_deg &&
-         angles.beta_deg - beta_spread <= f.beta_max_deg;
+  return field.may_hold_sphere(centre_src, radius_m);
 }
 
 }  // namespace
@@ -195,27 +176,35 @@ FrameTruthModel::ObjectView FrameTruthModel::view_of(std::uint32_t object,
       }
     }
   } else if ((index -= scene.conductors.size()) < scene.cylinders.size()) {
-    // The vertical lines of the surface the sensor sees: the nearest and the two silhouettes.
+    // The nearest point of the solid cylinder in closed form; in the field, the vertical lines of
+    // the surface the sensor sees: the nearest and the two silhouettes.
     const Cylinder& cylinder = scene.cylinders[index];
     const Eigen::Vector2d axis = cylinder.base_enu_m.head<2>();
     const Eigen::Vector2d toward = placement.origin_enu_m.head<2>() - axis;
     const double distance = toward.norm();
-    const auto line_at = [&](const Eigen::Vector2d& xy) {
-      const Eigen::Vector3d bottom(xy.x(), xy.y(), cylinder.base_enu_m.z());
-      const Eigen::Vector3d top = bottom + Eigen::Vector3d(0.0, 0.0, cylinder.height_m);
-      nearest.add_segment(to_src(bottom), to_src(top));
-    };
-    if (distance <= cylinder.radius_m) {
-      // Above or inside the footprint: the axis, with the nearest point straight below or above.
-      line_at(placement.origin_enu_m.head<2>());
-    } else {
-      const Eigen::Vector2d unit = toward / distance;
-      const Eigen::Vector2d across(-unit.y(), unit.x());
-      const double cos_edge = cylinder.radius_m / distance;
-      const double sin_edge = std::sqrt(std::max(0.0, 1.0 - cos_edge * cos_edge));
-      line_at(axis + cylinder.radius_m * unit);
-      line_at(axis + cylinder.radius_m * (cos_edge * unit + sin_edge * across));
-      line_at(axis + cylinder.radius_m * (cos_edge * unit - sin_edge * across));
+    const double bottom = cylinder.base_enu_m.z();
+    const double top = bottom + cylinder.height_m;
+    const Eigen::Vector2d unit =
+        distance > 0.0 ? Eigen::Vector2d(toward / distance) : Eigen::Vector2d::UnitX();
+    const Eigen::Vector2d facing = distance <= cylinder.radius_m
+                                       ? Eigen::Vector2d(placement.origin_enu_m.head<2>())
+                                       : Eigen::Vector2d(axis + cylinder.radius_m * unit);
+    const Eigen::Vector3d closest(facing.x(), facing.y(),
+                                  std::clamp(placement.origin_enu_m.z(), bottom, top));
+    nearest.overall_src = to_src(closest);
+    nearest.overall2 = nearest.overall_src.squaredNorm();
+    if (could_reach(field, to_src(grid_.sphere(object).centre), grid_.sphere(object).radius_m)) {
+      const auto line_at = [&](const Eigen::Vector2d& xy) {
+        nearest.clip_one(to_src({xy.x(), xy.y(), bottom}), to_src({xy.x(), xy.y(), top}), field);
+      };
+      line_at(facing);
+      if (distance > cylinder.radius_m) {
+        const Eigen::Vector2d across(-unit.y(), unit.x());
+        const double cos_edge = cylinder.radius_m / distance;
+        const double sin_edge = std::sqrt(std::max(0.0, 1.0 - cos_edge * cos_edge));
+        line_at(axis + cylinder.radius_m * (cos_edge * unit + sin_edge * across));
+        line_at(axis + cylinder.radius_m * (cos_edge * unit - sin_edge * across));
+      }
     }
   } else {
     const TriangleMesh& mesh = scene.meshes[index - scene.cylinders.size()].mesh;
@@ -228,9 +217,8 @@ FrameTruthModel::ObjectView FrameTruthModel::view_of(std::uint32_t object,
       }
     }
   }
-  // Objects whose bounding sphere lies wholly outside the field (most of a scene, off to the
-  // sides or behind) skip the clipping.
-  if (object >= scene.conductors.size() &&
+  // Meshes whose bounding sphere lies wholly outside the field skip the clipping.
+  if (object >= scene.conductors.size() + scene.cylinders.size() &&
       could_reach(field, to_src(grid_.sphere(object).centre), grid_.sphere(object).radius_m)) {
     nearest.clip(field);
   }

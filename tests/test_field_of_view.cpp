@@ -101,6 +101,32 @@ TEST(FieldOfView, ClipAgreesWithDenseSamplingOverRandomFieldsAndSegments) {
   EXPECT_LT(inside_only_by_clip, 30);
 }
 
+TEST(FieldOfView, ASphereWithAPointInsideIsNeverRuledOut) {
+  std::mt19937_64 rng(77);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const auto uniform = [&](double lo, double hi) { return lo + (hi - lo) * unit(rng); };
+  const FieldOfView field({-21.0, 21.0, -18.3, 17.9, 1238.36});
+  int ruled_out = 0, holding = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    const Eigen::Vector3d centre(uniform(-300, 1500), uniform(-800, 800), uniform(-800, 800));
+    const double radius = uniform(0.5, 200.0);
+    bool inside = false;
+    for (int k = 0; k < 400 && !inside; ++k) {
+      Eigen::Vector3d offset(uniform(-1, 1), uniform(-1, 1), uniform(-1, 1));
+      if (offset.norm() > 1.0) continue;
+      inside = field.contains(centre + radius * offset);
+    }
+    if (inside) {
+      ++holding;
+      ASSERT_TRUE(field.may_hold_sphere(centre, radius)) << trial;
+    } else if (!field.may_hold_sphere(centre, radius)) {
+      ++ruled_out;
+    }
+  }
+  EXPECT_GT(holding, 200);
+  EXPECT_GT(ruled_out, 1000);  // the test rules out most spheres that are outside
+}
+
 TEST(FieldOfView, NearestOnSegmentClampsToTheEnds) {
   EXPECT_DOUBLE_EQ(nearest_on_segment({1, -1, 0}, {1, 1, 0}), 0.5);
   EXPECT_DOUBLE_EQ(nearest_on_segment({1, 1, 0}, {1, 3, 0}), 0.0);
