@@ -1,6 +1,6 @@
 #!/bin/sh
-# `owsim sweep` alone and under mpirun (issue 18): the same member folders and sweep.csv for one
-# process and N = 2, 3; a resumed sweep reruns only what is missing; a bad sweep file is said in
+# `owsim sweep` alone and under mpirun (issue 18): the same member folders (truth.csv included)
+# and sweep.csv for one process and N = 2, 3; a resumed sweep reruns only what is missing; a bad sweep file is said in
 # one line naming file, line and key.
 #   mpi_sweep.sh OWSIM SOURCE_DIR WORK_DIR
 set -eu
@@ -16,7 +16,7 @@ cat > sweep.yaml <<YAML
 base: $source/examples/corridor.yaml
 count: 7
 seed: 11
-outputs: d64,trajectory,summary
+outputs: d64,trajectory,summary,truth
 vary:
   trajectory.duration_s: {values: [4, 9, 2, 6, 3, 8, 5]}   # members of different costs
   scene.spans[0].conductor.diameter_mm: {uniform: [5, 30]}
