@@ -52,9 +52,7 @@ void run_pd(PdCommandOptions& options) {
 void add_pd_command(CLI::App& app, CommandResult& /*result*/) {
   auto options = std::make_shared<PdCommandOptions>();
   CLI::App* command = app.add_subcommand(
-      "pd",
-      "detection probability versus range, with Clopper–Pearson intervals, from the ground "
-      "truth of a run or sweep folder");
+      "pd", "detection probability versus range with confidence intervals, from ground truth");
   command->add_option("DIR", options->pd.folder, "a run folder or a sweep folder")->required();
   auto* target = command->add_option("--target", options->target, "one object, by its id");
   command

@@ -47,8 +47,7 @@ void add_score_command(CLI::App& app, CommandResult& /*result*/) {
   auto options = std::make_shared<ScoreCommandOptions>();
   CLI::App* command = app.add_subcommand(
       "score",
-      "a detector's output matched to the objects of a run or sweep folder: per object "
-      "first detection and warning time, per class Pd, false alarms per hour");
+      "a detector's output scored against the ground truth: Pd, warning time, false alarms");
   command->add_option("DIR", options->score.folder, "a run folder or a sweep folder")->required();
   command
       ->add_option("--detections", options->score.detections,
