@@ -247,28 +247,22 @@ void FrameTruthModel::frame_truth(std::int64_t frame, const FrameSweep& sweep,
       (2.0 * kVelocityStepS);
   const FieldOfView field(frame_field(scan_, sweep));
 
-  std::vector<std::uint32_t> objects;
+  // The objects near the sensor and those hit; returns counted per object in a per-thread table
+  // (zeroed again below, so it costs the hits, not the scene).
+  thread_local std::vector<std::uint32_t> objects;
+  thread_local std::vector<std::uint32_t> returns_of;
+  objects.clear();
+  if (returns_of.size() < grid_.size()) returns_of.assign(grid_.size(), 0);
   grid_.objects_near(placement.origin_enu_m.x(), placement.origin_enu_m.y(), range_max_m_, objects);
-  const std::size_t near = objects.size();
   for (const FrameTally::ObjectHit& hit : hits) {
-    if (hit.object < grid_.size()) objects.push_back(hit.object);
+    if (hit.object < grid_.size() && returns_of[hit.object]++ == 0) objects.push_back(hit.object);
   }
   std::sort(objects.begin(), objects.end());
-  // Returns per object: the hits' objects, sorted, counted alongside.
-  std::vector<std::uint32_t> hit_objects;
-  hit_objects.reserve(objects.size() - near);
-  for (const FrameTally::ObjectHit& hit : hits) {
-    if (hit.object < grid_.size()) hit_objects.push_back(hit.object);
-  }
-  std::sort(hit_objects.begin(), hit_objects.end());
   objects.erase(std::unique(objects.begin(), objects.end()), objects.end());
 
-  auto hit = hit_objects.begin();
   for (const std::uint32_t object : objects) {
-    const auto hit_end = std::upper_bound(hit, hit_objects.end(), object);
-    const auto first_hit = std::lower_bound(hit, hit_end, object);
-    const auto returns = static_cast<std::uint64_t>(hit_end - first_hit);
-    hit = hit_end;
+    const std::uint64_t returns = returns_of[object];
+    returns_of[object] = 0;
     const ObjectGrid::Sphere& b = grid_.sphere(object);
     if (returns == 0 && (b.centre - placement.origin_enu_m).norm() - b.radius_m > range_max_m_) {
       continue;
