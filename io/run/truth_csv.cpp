@@ -1,5 +1,6 @@
 #include "io/run/truth_csv.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -7,6 +8,14 @@
 #include "io/files/csv_cells.hpp"
 
 namespace owsim {
+namespace {
+
+// A row's characters besides the frame, time and object cells, at most: the class (8), five
+// numbers (kCsvNumberMaxChars each, far more than a real value takes), in_view, an integer (24)
+// and the commas.
+constexpr std::size_t kRowMaxChars = 8 + 5 * kCsvNumberMaxChars + 1 + 24 + 16;
+
+}  // namespace
 
 TruthCsvRows::TruthCsvRows(const Scene& scene) {
   const std::size_t count = named_object_count(scene);
@@ -26,31 +35,48 @@ void TruthCsvRows::encode(const FrameTruth& truth, std::string& out) const {
                   " objects");
     }
   }
+  // Rows are written in place: the string grows once to a bound, then is cut to what was written.
+  // The frame and time cells are the same on every row: formatted once.
+  char head[2 * kCsvNumberMaxChars + 2];
+  char* at = write_csv_integer(head, truth.frame);
+  *at++ = ',';
+  at = write_csv_fixed(at, truth.time_s, 9);
+  *at++ = ',';
+  const std::string_view frame_cells(head, static_cast<std::size_t>(at - head));
+  std::size_t bound = 0;
   for (const TruthRow& row : truth.rows) {
-    append_csv_integer(out, truth.frame);
-    out += ',';
-    append_csv_fixed(out, truth.time_s, 9);
-    out += ',';
-    out += object_cells_[row.object];
-    out += ',';
-    out += to_string(classes_[row.object]);
-    out += ',';
-    append_csv_fixed(out, row.range_m, 3);
-    out += ',';
-    append_csv_fixed(out, row.alpha_deg, 4);
-    out += ',';
-    append_csv_fixed(out, row.beta_deg, 4);
-    out += row.in_view ? ",1," : ",0,";
-    append_csv_integer(out, static_cast<std::int64_t>(row.returns));
-    out += ',';
-    append_csv_fixed(out, row.closing_speed_mps, 3);
-    out += ',';
+    bound += frame_cells.size() + object_cells_[row.object].size() + kRowMaxChars;
+  }
+  const std::size_t start = out.size();
+  out.resize(start + bound);
+  char* write = out.data() + start;
+  for (const TruthRow& row : truth.rows) {
+    write = std::copy(frame_cells.begin(), frame_cells.end(), write);
+    const std::string& object = object_cells_[row.object];
+    write = std::copy(object.begin(), object.end(), write);
+    *write++ = ',';
+    const std::string_view surface = to_string(classes_[row.object]);
+    write = std::copy(surface.begin(), surface.end(), write);
+    *write++ = ',';
+    write = write_csv_fixed(write, row.range_m, 3);
+    *write++ = ',';
+    write = write_csv_fixed(write, row.alpha_deg, 4);
+    *write++ = ',';
+    write = write_csv_fixed(write, row.beta_deg, 4);
+    *write++ = ',';
+    *write++ = row.in_view ? '1' : '0';
+    *write++ = ',';
+    write = write_csv_integer(write, static_cast<std::int64_t>(row.returns));
+    *write++ = ',';
+    write = write_csv_fixed(write, row.closing_speed_mps, 3);
+    *write++ = ',';
     if (row.closing_speed_mps > 0.0) {
       const double time_to_reach_s = row.range_m / row.closing_speed_mps;
-      if (std::isfinite(time_to_reach_s)) append_csv_fixed(out, time_to_reach_s, 3);
+      if (std::isfinite(time_to_reach_s)) write = write_csv_fixed(write, time_to_reach_s, 3);
     }
-    out += '\n';
+    *write++ = '\n';
   }
+  out.resize(static_cast<std::size_t>(write - out.data()));
 }
 
 TruthCsvWriter::TruthCsvWriter(AtomicOutputFile file, std::uint64_t rows_written)
