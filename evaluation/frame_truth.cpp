@@ -70,13 +70,6 @@ class NearestPoints {
   std::vector<Segment>& segments_;
 };
 
-// False when a sphere (centre as a sensor-frame offset) lies wholly outside the field: beyond its
-// range, or farther in α or β than its angular radius allows. Conservative: true may still find
-// nothing inside.
-bool could_reach(const FieldOfView& field, const Eigen::Vector3d& centre_src, double radius_m) {
-  return field.may_hold_sphere(centre_src, radius_m);
-}
-
 }  // namespace
 
 std::vector<FrameTruthModel::ConductorChunk> FrameTruthModel::conductor_chunks(
@@ -166,10 +159,10 @@ FrameTruthModel::ObjectView FrameTruthModel::view_of(std::uint32_t object,
         nearest.add_overall(a, b);
       });
     }
-    if (could_reach(field, to_src(grid_.sphere(object).centre), grid_.sphere(object).radius_m)) {
+    if (field.may_hold_sphere(to_src(grid_.sphere(object).centre), grid_.sphere(object).radius_m)) {
       for (const auto& [gap, c] : order) {
         if (gap * gap >= nearest.inside2) break;
-        if (!could_reach(field, to_src(chunks[c].centre), chunks[c].radius_m)) continue;
+        if (!field.may_hold_sphere(to_src(chunks[c].centre), chunks[c].radius_m)) continue;
         for_segments(chunks[c], [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
           nearest.clip_one(a, b, field);
         });
@@ -193,7 +186,7 @@ FrameTruthModel::ObjectView FrameTruthModel::view_of(std::uint32_t object,
                                   std::clamp(placement.origin_enu_m.z(), bottom, top));
     nearest.overall_src = to_src(closest);
     nearest.overall2 = nearest.overall_src.squaredNorm();
-    if (could_reach(field, to_src(grid_.sphere(object).centre), grid_.sphere(object).radius_m)) {
+    if (field.may_hold_sphere(to_src(grid_.sphere(object).centre), grid_.sphere(object).radius_m)) {
       const auto line_at = [&](const Eigen::Vector2d& xy) {
         nearest.clip_one(to_src({xy.x(), xy.y(), bottom}), to_src({xy.x(), xy.y(), top}), field);
       };
@@ -219,7 +212,7 @@ FrameTruthModel::ObjectView FrameTruthModel::view_of(std::uint32_t object,
   }
   // Meshes whose bounding sphere lies wholly outside the field skip the clipping.
   if (object >= scene.conductors.size() + scene.cylinders.size() &&
-      could_reach(field, to_src(grid_.sphere(object).centre), grid_.sphere(object).radius_m)) {
+      field.may_hold_sphere(to_src(grid_.sphere(object).centre), grid_.sphere(object).radius_m)) {
     nearest.clip(field);
   }
   ObjectView view;
