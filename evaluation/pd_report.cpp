@@ -102,7 +102,7 @@ nlohmann::json pd_json(const PdReport& report, const PdOptions& options) {
 
 // The curves with their bands: x range, y probability.
 std::string pd_svg(const PdReport& report, const PdOptions& options) {
-  constexpr double kWidth = 760, kHeight = 440, kLeft = 70, kRight = 20, kTop = 50, kBottom = 60;
+  constexpr double kWidth = 760, kHeight = 480, kLeft = 70, kRight = 20, kTop = 50, kBottom = 100;
   const double plot_w = kWidth - kLeft - kRight;
   const double plot_h = kHeight - kTop - kBottom;
   const double x0 = options.bins.lo_m;
@@ -161,7 +161,7 @@ std::string pd_svg(const PdReport& report, const PdOptions& options) {
   add("<rect x=\"%g\" y=\"%g\" width=\"%g\" height=\"%g\" fill=\"none\" stroke=\"#444\"/>\n", kLeft,
       kTop, plot_w, plot_h);
   add("<text x=\"%g\" y=\"%g\" text-anchor=\"middle\">range (m)</text>\n", kLeft + plot_w / 2,
-      kHeight - 18);
+      kTop + plot_h + 36);
   add("<text transform=\"translate(18 %g) rotate(-90)\" text-anchor=\"middle\">probability of "
       "detection</text>\n",
       kTop + plot_h / 2);
@@ -192,7 +192,7 @@ std::string pd_svg(const PdReport& report, const PdOptions& options) {
             colour);
       }
     }
-    const double y = kTop + 14 + 16.0 * legend_row;
+    const double y = kTop + plot_h + 60 + 16.0 * legend_row;  // the legend under the plot
     add("<line x1=\"%g\" y1=\"%g\" x2=\"%g\" y2=\"%g\" stroke=\"%s\" stroke-width=\"2\"/>\n",
         kLeft + 10, y - 4, kLeft + 30, y - 4, colour);
     add("<text x=\"%g\" y=\"%g\">%s</text>\n", kLeft + 36, y, label);
