@@ -1,0 +1,73 @@
+// truth.csv's cost per frame (evaluation/frame_truth.hpp, io/run/truth_csv.hpp): the ground truth
+// of the benchmark scenario's middle frame — the objects within range, their nearest points and
+// clips against the scanned field — with its returns, and the rows formatted; one thread. Items
+// are rows. Compare with bench_receiver's frame and `owsim bench`'s "words + truth" figure.
+#include <benchmark/benchmark.h>
+
+#include "bench/bench_fixture.hpp"
+#include "evaluation/frame_truth.hpp"
+#include "io/run/flight_summary.hpp"
+#include "io/run/truth_csv.hpp"
+
+namespace owsim {
+namespace {
+
+struct TruthFixture {
+  TruthFixture()
+      : model(fixture.scene, fixture.scenario.scan, fixture.scenario.mount, fixture.trajectory),
+        rows(fixture.scene) {
+    FlightSummary::tally(named_object_count(fixture.scene), fixture.traced.pulses,
+                         fixture.traced.returns, tally);
+  }
+  const bench::BenchFixture& fixture = bench::bench_fixture();
+  FrameTruthModel model;
+  TruthCsvRows rows;
+  FrameTally tally;
+};
+
+const TruthFixture& truth_fixture() {
+  static const TruthFixture fixture;
+  return fixture;
+}
+
+void BM_FrameTruth(benchmark::State& state) {
+  const TruthFixture& f = truth_fixture();
+  FrameTruth truth;
+  for (auto _ : state) {
+    f.model.frame_truth(f.fixture.frame, f.fixture.traced.sweep, f.tally.object_hits, truth);
+    benchmark::DoNotOptimize(truth.rows.data());
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(truth.rows.size()));
+  state.counters["rows"] = static_cast<double>(truth.rows.size());
+}
+BENCHMARK(BM_FrameTruth)->Unit(benchmark::kMicrosecond);
+
+void BM_TruthRows(benchmark::State& state) {
+  const TruthFixture& f = truth_fixture();
+  FrameTruth truth;
+  f.model.frame_truth(f.fixture.frame, f.fixture.traced.sweep, f.tally.object_hits, truth);
+  std::string text;
+  for (auto _ : state) {
+    text.clear();
+    f.rows.encode(truth, text);
+    benchmark::DoNotOptimize(text.data());
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(truth.rows.size()));
+}
+BENCHMARK(BM_TruthRows)->Unit(benchmark::kMicrosecond);
+
+// The per-pulse tally truth.csv's returns come from (summary.json's too).
+void BM_TallyFrame(benchmark::State& state) {
+  const TruthFixture& f = truth_fixture();
+  FrameTally tally;
+  for (auto _ : state) {
+    FlightSummary::tally(named_object_count(f.fixture.scene), f.fixture.traced.pulses,
+                         f.fixture.traced.returns, tally);
+    benchmark::DoNotOptimize(tally.object_hits.data());
+  }
+  state.SetItemsProcessed(state.iterations() * f.fixture.pulses_per_frame());
+}
+BENCHMARK(BM_TallyFrame)->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+}  // namespace owsim
