@@ -164,7 +164,9 @@ FrameTruthModel::ObjectView FrameTruthModel::view_of(std::uint32_t object,
         if (gap * gap >= nearest.inside2) break;
         if (!field.may_hold_sphere(to_src(chunks[c].centre), chunks[c].radius_m)) continue;
         for_segments(chunks[c], [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-          nearest.clip_one(a, b, field);
+          // A segment whose nearest point is no nearer than the best inside cannot improve it.
+          const Eigen::Vector3d closest = a + nearest_on_segment(a, b) * (b - a);
+          if (closest.squaredNorm() < nearest.inside2) nearest.clip_one(a, b, field);
         });
       }
     }
@@ -191,7 +193,10 @@ FrameTruthModel::ObjectView FrameTruthModel::view_of(std::uint32_t object,
         nearest.clip_one(to_src({xy.x(), xy.y(), bottom}), to_src({xy.x(), xy.y(), top}), field);
       };
       line_at(facing);
-      if (distance > cylinder.radius_m) {
+      // Every point of a silhouette line lies at least the tangent length √(D² − r²) away: when
+      // the facing line already has a point in the field that near, they cannot hold a nearer one.
+      const double tangent2 = distance * distance - cylinder.radius_m * cylinder.radius_m;
+      if (distance > cylinder.radius_m && nearest.inside2 > tangent2) {
         const Eigen::Vector2d across(-unit.y(), unit.x());
         const double cos_edge = cylinder.radius_m / distance;
         const double sin_edge = std::sqrt(std::max(0.0, 1.0 - cos_edge * cos_edge));
