@@ -6,7 +6,6 @@
 #include <optional>
 #include <string_view>
 
-#include "evaluation/truth_table.hpp"
 #include "geometry/error.hpp"
 #include "io/files/csv_cells.hpp"
 #include "io/files/input_file.hpp"

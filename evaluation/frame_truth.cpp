@@ -100,12 +100,17 @@ ScanField frame_field(const ScanParams& scan, const FrameSweep& sweep) {
     field.alpha_min_deg = std::min(field.alpha_min_deg, alpha);
     field.alpha_max_deg = std::max(field.alpha_max_deg, alpha);
   }
+  field.range_max_m = timeout_range_m(scan.counter);
+  return frame_field(scan, sweep, field);
+}
+
+ScanField frame_field(const ScanParams& scan, const FrameSweep& sweep, const ScanField& fibers) {
+  ScanField field = fibers;
   const double first = mirror_beta_deg(scan, sweep, 0);
   const double last = mirror_beta_deg(scan, sweep, scan.pulses_per_frame() - 1);
   const double sawtooth = std::abs(scan.sawtooth_deg);
   field.beta_min_deg = std::min(first, last) - sawtooth;
   field.beta_max_deg = std::max(first, last) + sawtooth;
-  field.range_max_m = timeout_range_m(scan.counter);
   return field;
 }
 
@@ -116,6 +121,7 @@ FrameTruthModel::FrameTruthModel(const Scene& scene, const ScanParams& scan, con
       mount_(mount),
       poses_(&poses),
       range_max_m_(timeout_range_m(scan.counter)),
+      fibers_(frame_field(scan, FrameSweep{})),
       grid_(scene) {
   chunks_.reserve(scene.conductors.size());
   for (const Conductor& conductor : scene.conductors)
@@ -243,7 +249,7 @@ void FrameTruthModel::frame_truth(std::int64_t frame, const FrameSweep& sweep,
        sensor_placement(poses_->pose_at(out.time_s - kVelocityStepS), mount_, scan_.model)
            .origin_enu_m) /
       (2.0 * kVelocityStepS);
-  const FieldOfView field(frame_field(scan_, sweep));
+  const FieldOfView field(frame_field(scan_, sweep, fibers_));
 
   // The objects near the sensor and those hit; returns counted per object in a per-thread table
   // (zeroed again below, so it costs the hits, not the scene).

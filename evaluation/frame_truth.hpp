@@ -33,6 +33,10 @@ namespace owsim {
 // The field frame `sweep` scans: α from the lowest to the highest ranging fiber, β from the
 // sweep's first to its last mirror angle widened by the sawtooth, out to the timeout range.
 [[nodiscard]] ScanField frame_field(const ScanParams& scan, const FrameSweep& sweep);
+// The same with α and the range of `fibers` (a frame_field of the same scan): β alone changes
+// from frame to frame.
+[[nodiscard]] ScanField frame_field(const ScanParams& scan, const FrameSweep& sweep,
+                                    const ScanField& fibers);
 
 class FrameTruthModel final : public FrameTruthSource {
  public:
@@ -70,6 +74,7 @@ class FrameTruthModel final : public FrameTruthSource {
   Mount mount_;
   const PoseSource* poses_;
   double range_max_m_ = 0.0;
+  ScanField fibers_;  // α and range of the scan, the same every frame
   ObjectGrid grid_;
   std::vector<std::vector<ConductorChunk>> chunks_;  // by conductor
 };

@@ -44,16 +44,6 @@ T number_in(std::string_view cell, const std::string& where, std::string_view co
 
 }  // namespace
 
-std::string csv_cell_text(std::string_view cell) {
-  if (cell.size() < 2 || cell.front() != '"' || cell.back() != '"') return std::string(cell);
-  std::string text;
-  for (std::size_t i = 1; i + 1 < cell.size(); ++i) {
-    text += cell[i];
-    if (cell[i] == '"') ++i;  // a doubled quote
-  }
-  return text;
-}
-
 std::vector<CampaignFlight> campaign_flights(const std::filesystem::path& directory) {
   std::error_code error;
   const std::filesystem::path table = directory / "sweep.csv";

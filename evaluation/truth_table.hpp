@@ -55,7 +55,4 @@ struct ObjectTrack {
     const std::filesystem::path& truth_csv,
     const std::function<bool(std::string_view id, std::string_view object_class)>& wanted);
 
-// An RFC 4180 cell as its text: quotes removed, doubled quotes made single.
-[[nodiscard]] std::string csv_cell_text(std::string_view cell);
-
 }  // namespace owsim

@@ -211,4 +211,14 @@ void split_csv_cells(std::string_view line, std::vector<std::string_view>& cells
   }
 }
 
+std::string csv_cell_text(std::string_view cell) {
+  if (cell.size() < 2 || cell.front() != '"' || cell.back() != '"') return std::string(cell);
+  std::string text;
+  for (std::size_t i = 1; i + 1 < cell.size(); ++i) {
+    text += cell[i];
+    if (cell[i] == '"') ++i;  // a doubled quote
+  }
+  return text;
+}
+
 }  // namespace owsim

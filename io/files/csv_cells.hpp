@@ -41,6 +41,9 @@ void for_each_line(std::string_view text, Visit&& visit) {
   }
 }
 
+// An RFC 4180 cell as split_csv_cells returns it, as its text: quotes removed, doubled quotes
+// made single.
+[[nodiscard]] std::string csv_cell_text(std::string_view cell);
 // Splits one line (no line break) into `cells` at the commas outside double quotes; a quoted cell
 // is returned with its quotes, as written. Reading owsim's own files back (`owsim view`).
 void split_csv_cells(std::string_view line, std::vector<std::string_view>& cells);
