@@ -169,15 +169,46 @@ bool FieldOfView::may_hold_sphere(const Eigen::Vector3d& centre_src, double radi
   // normals).
   if (centre_src.z() * cos_beta_min_ - centre_src.x() * sin_beta_min_ < -radius_m) return false;
   if (centre_src.x() * sin_beta_max_ - centre_src.z() * cos_beta_max_ < -radius_m) return false;
-  // Wholly above or below the α bounds: the centre's α more than the angular radius away.
-  const double spread = std::asin(radius_m / distance);
-  const double alpha = std::asin(std::clamp(centre_src.y() / distance, -1.0, 1.0));
-  return alpha + spread >= field_.alpha_min_deg * kRadPerDeg &&
-         alpha - spread <= field_.alpha_max_deg * kRadPerDeg;
+  // Wholly above or below the α bounds: the centre's α more than the angular radius s away. With
+  // sines and cosines of α ± s (α ∈ [−90°, 90°], s ∈ [0°, 90°]): α + s ≥ α₁ holds when α + s ≥ 90°
+  // (its cosine ≤ 0), else when its sine ≥ sin α₁; α − s ≤ α₂ likewise. No inverse sines.
+  const double sin_s = radius_m / distance;
+  const double cos_s = std::sqrt(std::max(0.0, 1.0 - sin_s * sin_s));
+  const double sin_a = std::clamp(centre_src.y() / distance, -1.0, 1.0);
+  const double cos_a =
+      std::sqrt(centre_src.x() * centre_src.x() + centre_src.z() * centre_src.z()) / distance;
+  const bool above_lowest = cos_a * cos_s - sin_a * sin_s <= 0.0 ||
+                            sin_a * cos_s + cos_a * sin_s >= sin_alpha_min_;
+  const bool below_highest = cos_a * cos_s + sin_a * sin_s <= 0.0 ||
+                             sin_a * cos_s - cos_a * sin_s <= sin_alpha_max_;
+  return above_lowest && below_highest;
+}
+
+bool FieldOfView::wholly_outside(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1) const {
+  // Beyond one β plane (a half-space: convex, so both ends beyond it holds the whole segment).
+  const auto below_beta_min = [&](const Eigen::Vector3d& v) {
+    return v.z() * cos_beta_min_ - v.x() * sin_beta_min_ < 0.0;
+  };
+  const auto above_beta_max = [&](const Eigen::Vector3d& v) {
+    return v.x() * sin_beta_max_ - v.z() * cos_beta_max_ < 0.0;
+  };
+  if (below_beta_min(p0) && below_beta_min(p1)) return true;
+  if (above_beta_max(p0) && above_beta_max(p1)) return true;
+  // Below a negative lowest α (a ≤ |v|·sin α₁ < 0: the inside of a convex cone about −a), or
+  // above a positive highest α; squared, so no square root.
+  const auto below_alpha_min = [&](const Eigen::Vector3d& v) {
+    return v.y() < 0.0 && v.y() * v.y() > sin_alpha_min_ * sin_alpha_min_ * v.squaredNorm();
+  };
+  const auto above_alpha_max = [&](const Eigen::Vector3d& v) {
+    return v.y() > 0.0 && v.y() * v.y() > sin_alpha_max_ * sin_alpha_max_ * v.squaredNorm();
+  };
+  if (sin_alpha_min_ < 0.0 && below_alpha_min(p0) && below_alpha_min(p1)) return true;
+  return sin_alpha_max_ > 0.0 && above_alpha_max(p0) && above_alpha_max(p1);
 }
 
 std::optional<double> FieldOfView::nearest_inside(const Eigen::Vector3d& p0,
                                                   const Eigen::Vector3d& p1) const {
+  if (wholly_outside(p0, p1)) return std::nullopt;
   const Eigen::Vector3d d = p1 - p0;
   IntervalSet inside = IntervalSet({0.0, 1.0});
   inside = inside.intersected(beta_at_least(sin_beta_min_, cos_beta_min_, p0, d));
@@ -185,11 +216,20 @@ std::optional<double> FieldOfView::nearest_inside(const Eigen::Vector3d& p0,
   if (inside.size() == 0) return std::nullopt;
   inside = inside.intersected(within_range(field_.range_max_m, p0, d));
   if (inside.size() == 0) return std::nullopt;
+  // The β planes and the range ball leave one interval, on which |v(t)|² is least at the clamped
+  // free minimiser: when that point meets both α bounds it is the answer, and the cones are not
+  // needed (the common case for a segment in view).
+  const double length2 = d.squaredNorm();
+  const double free_t = length2 > 0.0 ? -p0.dot(d) / length2 : 0.0;
+  if (inside.size() == 1) {
+    const double t = std::clamp(free_t, inside[0].lo, inside[0].hi);
+    const Eigen::Vector3d v = p0 + t * d;
+    const double length = v.norm();
+    if (v.y() >= sin_alpha_min_ * length && v.y() <= sin_alpha_max_ * length) return t;
+  }
   inside = inside.intersected(alpha_at_least(sin_alpha_min_, p0, d));
   inside = inside.intersected(alpha_at_most(sin_alpha_max_, p0, d));
   if (inside.size() == 0) return std::nullopt;
-  const double length2 = d.squaredNorm();
-  const double free_t = length2 > 0.0 ? -p0.dot(d) / length2 : 0.0;
   double best_t = 0.0;
   double best = kInf;
   for (std::size_t i = 0; i < inside.size(); ++i) {

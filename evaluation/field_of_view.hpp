@@ -46,6 +46,10 @@ class FieldOfView {
   // False when a sphere (centre as a sensor-frame offset) lies wholly outside the field; true may
   // still find nothing inside. The β bounds as planes, α and range by the sphere's angular radius.
   [[nodiscard]] bool may_hold_sphere(const Eigen::Vector3d& centre_src, double radius_m) const;
+  // True when segment p0–p1 lies wholly outside a convex part of the field's complement (beyond a
+  // β plane, below a negative lowest α or above a positive highest α) — a few multiplications; false
+  // may still hold nothing inside.
+  [[nodiscard]] bool wholly_outside(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1) const;
   // The nearest point to the sensor of segment p0–p1 (sensor-frame offsets, SRC axes) inside the
   // field, as its parameter t ∈ [0, 1] along p0 → p1; std::nullopt when no part of it is inside.
   [[nodiscard]] std::optional<double> nearest_inside(const Eigen::Vector3d& p0,

@@ -35,25 +35,20 @@ void TruthCsvRows::encode(const FrameTruth& truth, std::string& out) const {
                   " objects");
     }
   }
-  // Rows are written in place: the string grows once to a bound, then is cut to what was written.
-  // The frame and time cells are the same on every row: formatted once.
+  // The frame and time cells are the same on every row: formatted once. The cells after the
+  // object's are written on the stack and appended, so the string is never zero-filled to a bound
+  // (a row's bound is ~2 kB for ~80 characters written).
   char head[2 * kCsvNumberMaxChars + 2];
   char* at = write_csv_integer(head, truth.frame);
   *at++ = ',';
   at = write_csv_fixed(at, truth.time_s, 9);
   *at++ = ',';
   const std::string_view frame_cells(head, static_cast<std::size_t>(at - head));
-  std::size_t bound = 0;
+  char tail[kRowMaxChars];
   for (const TruthRow& row : truth.rows) {
-    bound += frame_cells.size() + object_cells_[row.object].size() + kRowMaxChars;
-  }
-  const std::size_t start = out.size();
-  out.resize(start + bound);
-  char* write = out.data() + start;
-  for (const TruthRow& row : truth.rows) {
-    write = std::copy(frame_cells.begin(), frame_cells.end(), write);
-    const std::string& object = object_cells_[row.object];
-    write = std::copy(object.begin(), object.end(), write);
+    out += frame_cells;
+    out += object_cells_[row.object];
+    char* write = tail;
     *write++ = ',';
     const std::string_view surface = to_string(classes_[row.object]);
     write = std::copy(surface.begin(), surface.end(), write);
@@ -75,8 +70,8 @@ void TruthCsvRows::encode(const FrameTruth& truth, std::string& out) const {
       if (std::isfinite(time_to_reach_s)) write = write_csv_fixed(write, time_to_reach_s, 3);
     }
     *write++ = '\n';
+    out.append(tail, write);
   }
-  out.resize(static_cast<std::size_t>(write - out.data()));
 }
 
 TruthCsvWriter::TruthCsvWriter(AtomicOutputFile file, std::uint64_t rows_written)
