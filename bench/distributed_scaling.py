@@ -40,7 +40,7 @@ def command(owsim, processes, threads, arguments):
 def run_once(owsim, processes, threads, kind, out):
     shutil.rmtree(out, ignore_errors=True)
     if kind == "sweep":
-        arguments = ["sweep", os.path.join(ROOT, "examples/sweeps/corridor_sweep.yaml"),
+        arguments = ["sweep", os.path.join(ROOT, "examples/corridor_sweep.yaml"),
                      "--out", out]
     else:
         outputs = "d64,summary" if kind == "run: words" else "d64,points,trajectory,summary"

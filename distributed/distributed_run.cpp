@@ -159,7 +159,7 @@ RunReport run_distributed(Communicator& comm, const Simulation& simulation,
   const bool root = comm.rank() == kRoot;
   FlightOutputOptions output_options =
       run_output_options(setup, simulation.run_fingerprint(options), options);
-  output_options.scenario_yaml = simulation.scenario_as_flown();
+  output_options.scenario = simulation.scenario_as_flown();
 
   // Process 0 alone touches the folder's state; a failure there stops every process.
   std::optional<FlightOutputs> outputs;

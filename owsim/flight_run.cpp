@@ -163,7 +163,7 @@ void simulate_frames(const FrameSimulator& simulator, const FlightSetup& setup,
 }
 
 RunReport run_flight_outputs(const FlightSetup& setup, const SimulationOptions& simulation,
-                             const std::string& source_hash, const std::string& scenario_yaml,
+                             const std::string& source_hash, const FlownScenario& flown,
                              const RunOptions& options, int threads, double build_s) {
   const auto opening = Clock::now();
   const Scenario& scenario = setup.scenario;
@@ -173,7 +173,7 @@ RunReport run_flight_outputs(const FlightSetup& setup, const SimulationOptions& 
       source_hash.empty() ? nlohmann::json()
                           : run_fingerprint(setup, simulation, source_hash, options),
       options);
-  output_options.scenario_yaml = scenario_yaml;
+  output_options.scenario = flown;
   std::optional<RunCheckpoint> checkpoint;
   if (options.resume) checkpoint = checkpoint_to_resume(output_options, frames, options);
   FlightOutputs outputs(output_options, setup.scene, scenario.scan, setup.local_frame,

@@ -108,11 +108,11 @@ void simulate_frames(const FrameSimulator& simulator, const FlightSetup& setup,
 // options.resume, continues from the folder's checkpoint (throws owsim::Error naming it if it was
 // written by a run with other output-changing options or inputs), or starts from frame 0 with a
 // notice if there is none. `build_s`: the time building `setup` took, for RunReport::setup_s.
-// `scenario_yaml`: scenario.yaml's text (empty: none is written).
+// `flown`: scenario.yaml and the files it names (an empty text: none is written).
 [[nodiscard]] RunReport run_flight_outputs(const FlightSetup& setup,
                                            const SimulationOptions& simulation,
                                            const std::string& source_hash,
-                                           const std::string& scenario_yaml,
-                                           const RunOptions& options, int threads, double build_s);
+                                           const FlownScenario& flown, const RunOptions& options,
+                                           int threads, double build_s);
 
 }  // namespace owsim

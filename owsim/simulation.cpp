@@ -129,7 +129,7 @@ struct Simulation::State {
       : options(options_in),
         source_hash(std::move(hash)),
         setup(std::move(scenario), options),
-        flown_yaml(yaml.empty() ? std::string() : as_flown(yaml, path)),
+        flown(yaml.empty() ? FlownScenario() : as_flown(yaml, path)),
         geodesy(setup.local_frame),
         threads(worker_count(options)),
         arena(threads),
@@ -138,8 +138,8 @@ struct Simulation::State {
   SimulationOptions options;
   std::string source_hash;  // of the scenario's text; empty for a scenario built in code
   FlightSetup setup;
-  std::string flown_yaml;  // scenario.yaml of its runs; empty for a scenario built in code
-  GeodesyCells geodesy;    // places the frames' returns on WGS-84, shared by every frame
+  FlownScenario flown;   // scenario.yaml of its runs; empty for a scenario built in code
+  GeodesyCells geodesy;  // places the frames' returns on WGS-84, shared by every frame
   int threads;
   mutable tbb::task_arena arena;
   // object_ids(), built on first use: a run that never asks keeps no copy of a million ids.
@@ -147,8 +147,8 @@ struct Simulation::State {
   mutable std::vector<std::string> ids;
   double build_s;  // reading the scenario and building the scene, the BVH and the simulator
 
-  [[nodiscard]] std::string as_flown(std::string_view yaml,
-                                     const std::filesystem::path& path) const {
+  [[nodiscard]] FlownScenario as_flown(std::string_view yaml,
+                                       const std::filesystem::path& path) const {
     FlownOverrides overrides;
     overrides.seed = setup.scenario.seed;
     overrides.no_noise = options.no_noise;
@@ -156,7 +156,7 @@ struct Simulation::State {
       overrides.duration_s =
           static_cast<double>(setup.frames) * setup.scenario.scan.frame_duration_s();
     }
-    return owsim::scenario_as_flown(yaml, path, overrides);
+    return owsim::scenario_as_flown(yaml, path, overrides, setup.scenario.input_files);
   }
 
   void simulate(std::int64_t frame, const PoseSource& poses, Frame& out) const {
@@ -251,7 +251,7 @@ void Simulation::simulate_frame(std::int64_t frame, std::span<const PoseSample> 
 
 void Simulation::in_arena(const std::function<void()>& work) const { state_->arena.execute(work); }
 
-const std::string& Simulation::scenario_as_flown() const { return state_->flown_yaml; }
+const FlownScenario& Simulation::scenario_as_flown() const { return state_->flown; }
 
 nlohmann::json Simulation::run_fingerprint(const RunOptions& options) const {
   if (state_->source_hash.empty()) return nullptr;
@@ -260,8 +260,8 @@ nlohmann::json Simulation::run_fingerprint(const RunOptions& options) const {
 
 RunReport Simulation::run(const RunOptions& options) const {
   return state_->arena.execute([&] {
-    return run_flight_outputs(state_->setup, state_->options, state_->source_hash,
-                              state_->flown_yaml, options, state_->threads, state_->build_s);
+    return run_flight_outputs(state_->setup, state_->options, state_->source_hash, state_->flown,
+                              options, state_->threads, state_->build_s);
   });
 }
 

@@ -100,9 +100,10 @@ class Simulation {
   // Runs `work` on those workers' task arena (where run() simulates), for drivers below the facade
   // (distributed/).
   void in_arena(const std::function<void()>& work) const;
-  // scenario.yaml of its runs: the scenario's YAML as flown (io/scenario/scenario_as_flown.hpp);
-  // empty for a scenario built in code, whose runs write none.
-  [[nodiscard]] const std::string& scenario_as_flown() const;
+  // scenario.yaml of its runs: the scenario's YAML as flown, with the copies of the files it
+  // names (io/scenario/scenario_as_flown.hpp); empty for a scenario built in code, whose runs
+  // write none.
+  [[nodiscard]] const FlownScenario& scenario_as_flown() const;
   // What makes a run's output bytes (io/run/run_checkpoint.hpp `run`), as run() keeps it in its
   // checkpoint; null for a scenario built in code, whose runs keep none.
   [[nodiscard]] nlohmann::json run_fingerprint(const RunOptions& options) const;

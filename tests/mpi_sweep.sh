@@ -12,8 +12,9 @@ same="/usr/bin/python3 $source/tests/same_outputs.py"
 rm -rf "$work"
 mkdir -p "$work"
 cd "$work"
+cp "$source/examples/corridor.yaml" .  # a sweep file reads only its own folder tree
 cat > sweep.yaml <<YAML
-base: $source/examples/corridor.yaml
+base: corridor.yaml
 count: 7
 seed: 11
 outputs: d64,trajectory,summary,truth

@@ -13,7 +13,9 @@
 
 #include "cli_runner.hpp"
 #include "geometry/error.hpp"
+#include "geometry/geodetic_frame.hpp"
 #include "geometry/post_lattice.hpp"
+#include "io/scenario/dem_terrain.hpp"
 #include "python_oracle.hpp"
 #include "scene_fixtures.hpp"
 
@@ -50,16 +52,14 @@ TEST(PostLattice, HeightIsTheSurfaceAtRandomPoints) {
     lattice.validate("plane");
     for (int i = 0; i < 500; ++i) {
       const double c = test::uniform(rng, 0.0, 39.0), r = test::uniform(rng, 0.0, 29.0);
-      const Eigen::Vector2d en =
-          (c * Eigen::Vector2d(std::cos(angle), std::sin(angle)) +
-           r * Eigen::Vector2d(std::sin(angle), -std::cos(angle))) *
-          10.0;
+      const Eigen::Vector2d en = (c * Eigen::Vector2d(std::cos(angle), std::sin(angle)) +
+                                  r * Eigen::Vector2d(std::sin(angle), -std::cos(angle))) *
+                                 10.0;
       EXPECT_NEAR(lattice.height_at(en.x(), en.y()), 3.0 + 0.2 * en.x() - 0.1 * en.y(), 1e-9);
       EXPECT_TRUE(lattice.covers(en.x(), en.y()));
     }
     EXPECT_FALSE(lattice.covers(-50.0 * std::cos(angle), -50.0 * std::sin(angle)));
-    EXPECT_THROW((void)lattice.height_at(-50.0 * std::cos(angle), -50.0 * std::sin(angle)),
-                 Error);
+    EXPECT_THROW((void)lattice.height_at(-50.0 * std::cos(angle), -50.0 * std::sin(angle)), Error);
   }
 }
 
@@ -71,11 +71,11 @@ TEST(PostLattice, TwistedCellFollowsItsTwoTriangles) {
   lattice.nrows = 2;
   lattice.posts = {{0, 10, 4}, {10, 10, 0}, {0, 0, 0}, {10, 0, 0}};
   lattice.valid = {1, 1, 1, 1};
-  EXPECT_NEAR(lattice.height_at(5.0, 5.0), 0.0, 1e-12);   // on the diagonal
-  EXPECT_NEAR(lattice.height_at(2.0, 7.0), 2.0, 1e-12);   // north-west triangle: −0.4 e + 0.4 n
-  EXPECT_NEAR(lattice.height_at(7.0, 2.0), 0.0, 1e-12);   // south-east triangle is flat
-  const TriangleMesh mesh = lattice.mesh(Eigen::AlignedBox2d(Eigen::Vector2d(-1, -1),
-                                                             Eigen::Vector2d(1, 1)));
+  EXPECT_NEAR(lattice.height_at(5.0, 5.0), 0.0, 1e-12);  // on the diagonal
+  EXPECT_NEAR(lattice.height_at(2.0, 7.0), 2.0, 1e-12);  // north-west triangle: −0.4 e + 0.4 n
+  EXPECT_NEAR(lattice.height_at(7.0, 2.0), 0.0, 1e-12);  // south-east triangle is flat
+  const TriangleMesh mesh =
+      lattice.mesh(Eigen::AlignedBox2d(Eigen::Vector2d(-1, -1), Eigen::Vector2d(1, 1)));
   ASSERT_EQ(mesh.triangles.size(), 2u);
   for (const auto& t : mesh.triangles) {
     const Eigen::Vector3d a = mesh.vertices[t[0]], b = mesh.vertices[t[1]], c = mesh.vertices[t[2]];
@@ -86,10 +86,10 @@ TEST(PostLattice, TwistedCellFollowsItsTwoTriangles) {
 TEST(PostLattice, HolesAreNoSurface) {
   PostLattice lattice = plane_lattice(0.0, 5, 5, 10.0);
   lattice.valid[lattice.index(2, 2)] = 0;  // the four cells around post (2, 2)
-  EXPECT_EQ(lattice.mesh(Eigen::AlignedBox2d(Eigen::Vector2d(-100, -100),
-                                             Eigen::Vector2d(100, 100)))
-                .triangles.size(),
-            2u * (16 - 4));
+  EXPECT_EQ(
+      lattice.mesh(Eigen::AlignedBox2d(Eigen::Vector2d(-100, -100), Eigen::Vector2d(100, 100)))
+          .triangles.size(),
+      2u * (16 - 4));
   EXPECT_TRUE(lattice.covers(20.0, -20.0));
   EXPECT_FALSE(lattice.height_if_any(21.0, -19.0).has_value());
   EXPECT_THROW((void)lattice.height_at(21.0, -19.0), Error);
@@ -127,9 +127,9 @@ class DemRuns : public ::testing::Test {
 
   std::string check(const std::string& out, const std::string& raster) {
     const fs::path oracle = fs::path(OWSIM_SOURCE_DIR) / "tests/oracles/dem_oracle.py";
-    return test::run_python_file(oracle, {"check " + (dir_ / out / "points.csv").string() + " " +
-                                              (dir_ / raster).string(),
-                                          false});
+    return test::run_python_file(
+        oracle,
+        {"check " + (dir_ / out / "points.csv").string() + " " + (dir_ / raster).string(), false});
   }
 
   // Runs over the DEM `raster` into `out` and checks every ground return with the oracle.
@@ -162,7 +162,8 @@ CliResult recorded_run(const TempDir& dir, const std::string& file, double e0_m,
   std::ofstream(dir / "recorded.yaml")
       << "name: recorded\norigin: {lat: 48.6881, lon: 10.8447, h: 450.0}\n"
          "trajectory: {file: track.csv, format: csv}\n"
-         "scene:\n  terrain: {dem: " << file << "}\n";
+         "scene:\n  terrain: {dem: "
+      << file << "}\n";
   return run_cli({"run", (dir / "recorded.yaml").string(), "--no-noise", "--frames", "4",
                   "--outputs", "points,summary", "--out", (dir / "recorded").string()},
                  dir.path());
@@ -170,7 +171,9 @@ CliResult recorded_run(const TempDir& dir, const std::string& file, double e0_m,
 
 // EGM96 heights (a compound CRS, UTM + EPSG:5773) are turned into ellipsoidal heights with PROJ's
 // geoid grid: ~47 m apart here, so a DEM taken as ellipsoidal would miss the oracle by that.
-TEST_F(DemRuns, GeoidHeightsAreConvertedToEllipsoidalHeights) { expect_ground_on("egm96.tif", "egm96"); }
+TEST_F(DemRuns, GeoidHeightsAreConvertedToEllipsoidalHeights) {
+  expect_ground_on("egm96.tif", "egm96");
+}
 
 TEST_F(DemRuns, RecordedFlightsReadTheirReachAndMustLieOnTheDem) {
   const CliResult result = recorded_run(dir_, "utm.tif", -600.0, 200.0);
@@ -184,23 +187,58 @@ TEST_F(DemRuns, RecordedFlightsReadTheirReachAndMustLieOnTheDem) {
   EXPECT_FALSE(fs::exists(dir_ / "recorded"));
 }
 
+// A VRT whose raw band is /etc/passwd: GDAL would read the system file as heights.
+void write_hostile_vrt(const fs::path& file) {
+  std::ofstream(file) << R"(<VRTDataset rasterXSize="10" rasterYSize="10"><SRS>EPSG:4326</SRS>
+<GeoTransform>10.84,0.001,0,48.69,0,-0.001</GeoTransform>
+<VRTRasterBand dataType="Byte" band="1" subClass="VRTRawRasterBand">
+<SourceFilename relativetoVRT="0">/etc/passwd</SourceFilename></VRTRasterBand></VRTDataset>
+)";
+}
+
 TEST_F(DemRuns, BadDemsGiveOneLineAndNoOutput) {
+  write_hostile_vrt(dir_ / "passwd.vrt");
+  fs::create_symlink("/dev/zero", dir_ / "zero.tif");
+  fs::create_symlink("loop.tif", dir_ / "loop.tif");
   const struct {
     std::string file;
     double east_m;
     std::string says;
   } cases[] = {{"nocrs.tif", 200.0, "declares no CRS"},
-               {"missing.tif", 200.0, "GDAL cannot open it"},
-               {"utm.tif", 2800.0, "does not cover the flight"}};
+               {"missing.tif", 200.0, "no such file: "},
+               {"utm.tif", 2800.0, "does not cover the flight"},
+               // Issue 33: nothing but local regular files in the scenario's folder tree, and no
+               // format that names other files.
+               {"/vsicurl/http://127.0.0.1:9/x.tif", 200.0, "a GDAL virtual file system"},
+               {"http://127.0.0.1:9/x.tif", 200.0, "a URL or a connection string"},
+               {"'WMS:http://127.0.0.1:9/?'", 200.0, "a URL or a connection string"},
+               {"passwd.vrt", 200.0, "a VRT file, which terrain.dem does not accept"},
+               {"/etc/passwd", 200.0, "outside the folder"},
+               {"../utm.tif", 200.0, "outside the folder"},
+               {"zero.tif", 200.0, "outside the folder"},
+               {"loop.tif", 200.0, "a symbolic link loop"}};
   for (const auto& bad : cases) {
     SCOPED_TRACE(bad.file);
     const CliResult result = run(bad.file, "bad", bad.east_m);
     EXPECT_NE(result.exit_status, 0);
     EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
     EXPECT_NE(result.err.find("scene.terrain.dem"), std::string::npos) << result.err;
-    EXPECT_NE(result.err.find(bad.file), std::string::npos) << result.err;
+    const std::string named = bad.file.front() == '\'' ? bad.file.substr(1, 8) : bad.file;
+    EXPECT_NE(result.err.find(named), std::string::npos) << result.err;
     EXPECT_NE(result.err.find(bad.says), std::string::npos) << result.err;
     EXPECT_FALSE(fs::exists(dir_ / "bad")) << result.err;
+  }
+}
+
+// At the seam: the GDAL module itself opens no VRT, whoever calls it.
+TEST_F(DemRuns, TheModuleRefusesAVrtWhateverItsPath) {
+  write_hostile_vrt(dir_ / "passwd.vrt");
+  const LocalFrame frame({48.6881, 10.8447, 450.0});
+  try {
+    (void)read_dem_terrain(dir_ / "passwd.vrt", frame, std::nullopt);
+    FAIL() << "a VRT was read";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("a VRT file"), std::string::npos) << e.what();
   }
 }
 

@@ -3,14 +3,12 @@
 // every output of Simulation::run byte for byte, resumes a checkpoint of a one-process run, and
 // a one-process sweep writes every member and sweep.csv. Runs without MPI and under the
 // sanitizers; tests/mpi_run.sh and mpi_sweep.sh check 1, 2 and 3 processes through mpirun.
-#include "distributed/distributed_run.hpp"
-
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
-
 #include <set>
 
+#include "distributed/distributed_run.hpp"
 #include "distributed/sweep_run.hpp"
 #include "io/run/run_checkpoint.hpp"
 #include "tests/cli_runner.hpp"
@@ -25,7 +23,8 @@ const fs::path kCorridor = fs::path(OWSIM_SOURCE_DIR) / "examples" / "corridor.y
 
 nlohmann::json summary_without_run_facts(const fs::path& folder) {
   nlohmann::json summary = nlohmann::json::parse(test::read_whole_file(folder / "summary.json"));
-  for (const char* fact : {"setup_s", "wall_s", "pulses_per_s", "realtime_factor", "threads", "processes"}) {
+  for (const char* fact :
+       {"setup_s", "wall_s", "pulses_per_s", "realtime_factor", "threads", "processes"}) {
     EXPECT_TRUE(summary.contains(fact)) << fact;
     summary.erase(fact);
   }
@@ -116,7 +115,8 @@ TEST(DistributedRun, ResumesTheCheckpointOfAOneProcessRun) {
 TEST(DistributedSweep, OneProcessRunsEveryMemberAndWritesTheTable) {
   test::TempDir work;
   const fs::path sweep_file = work.path() / "sweep.yaml";
-  std::ofstream(sweep_file) << "base: " << kCorridor.string() << "\n"
+  fs::copy_file(kCorridor, work.path() / "corridor.yaml");  // a sweep reads only its own tree
+  std::ofstream(sweep_file) << "base: corridor.yaml\n"
                             << "count: 3\nseed: 5\noutputs: d64\n"
                             << "vary:\n  trajectory.duration_s: {values: [2, 4, 3]}\n"
                             << "  seed: {member: true}\n";
@@ -142,8 +142,9 @@ TEST(DistributedSweep, OneProcessRunsEveryMemberAndWritesTheTable) {
     std::string row;
     std::getline(lines, row);
     const int frames = summary["frames"].get<int>();
-    EXPECT_TRUE(row.starts_with(std::to_string(m) + "," + std::vector<std::string>{"2", "4", "3"}[m] +
-                                "," + std::to_string(m) + "," + std::to_string(frames) + ","))
+    EXPECT_TRUE(row.starts_with(std::to_string(m) + "," +
+                                std::vector<std::string>{"2", "4", "3"}[m] + "," +
+                                std::to_string(m) + "," + std::to_string(frames) + ","))
         << row;
     EXPECT_TRUE(fs::exists(options.out / std::to_string(m) / "flight.d64"));
   }

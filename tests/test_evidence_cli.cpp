@@ -104,8 +104,11 @@ TEST(EvidenceCli, TruthCountsEveryReturnAndTheFolderFliesAgainToTheSameBytes) {
 
 TEST(EvidenceCli, PdOverASweepAgreesWithAnIndependentRecount) {
   const TempDir work("owsim_evidence_pd");
+  // A sweep file reads only its own folder tree: the base is copied beside it.
+  fs::copy_file(kSource / "examples/campaigns/hellas_5mm_approach.yaml",
+                work / "hellas_5mm_approach.yaml");
   std::ofstream(work / "sweep.yaml")
-      << "base: " << (kSource / "examples/campaigns/hellas_5mm_approach.yaml").string() << "\n"
+      << "base: hellas_5mm_approach.yaml\n"
       << "count: 6\nseed: 3\noutputs: summary,truth\nvary:\n"
       << "  trajectory.waypoints.points[0].n: {uniform: [-300, 300]}\n"
       << "  trajectory.waypoints.points[0].e: {uniform: [-800, -600]}\n"
@@ -223,8 +226,8 @@ TEST(EvidenceCli, ScoreMatchesEachDetectionToTheNearestObjectWithinTheGate) {
   ASSERT_EQ(run.exit_status, 0) << run.err;
   // pylon-2 stands at (0, 0), 3 m wide and 50 m tall; pylon-1 at (−150, −400); the conductors
   // hang from their tops.
-  const Eigen::Vector3d beside_pylon_2(3.5, 0.0, 30.0);  // 2 m from its surface
-  const Eigen::Vector3d in_the_sky(0.0, 0.0, 300.0);     // nothing within 5 m
+  const Eigen::Vector3d beside_pylon_2(3.5, 0.0, 30.0);        // 2 m from its surface
+  const Eigen::Vector3d in_the_sky(0.0, 0.0, 300.0);           // nothing within 5 m
   const Eigen::Vector3d beside_pylon_1(-146.5, -400.0, 10.0);  // below the conductors
   std::ofstream(work / "enu.csv") << "time_s,e_m,n_m,u_m,class,track,ignored\n"
                                   << "2.0,3.5,0,30,pole,a,x\n3.0,0,0,300,wire,,\n"
@@ -293,12 +296,12 @@ TEST(EvidenceCli, ScoreMatchesEachDetectionToTheNearestObjectWithinTheGate) {
 
 TEST(EvidenceCli, SweepDetectorAndScoreRunAsOneLoop) {
   const TempDir work("owsim_evidence_loop");
-  std::ofstream(work / "sweep.yaml")
-      << "base: " << (kSource / "examples/pylon_line.yaml").string() << "\n"
-      << "count: 3\nseed: 11\noutputs: csv,summary,truth\nvary:\n"
-      << "  trajectory.waypoints.speed_mps: {uniform: [40, 60]}\n"
-      << "  trajectory.duration_s: {values: [6]}\n"
-      << "  seed: {member: true}\n";
+  fs::copy_file(kSource / "examples/pylon_line.yaml", work / "pylon_line.yaml");
+  std::ofstream(work / "sweep.yaml") << "base: pylon_line.yaml\n"
+                                     << "count: 3\nseed: 11\noutputs: csv,summary,truth\nvary:\n"
+                                     << "  trajectory.waypoints.speed_mps: {uniform: [40, 60]}\n"
+                                     << "  trajectory.duration_s: {values: [6]}\n"
+                                     << "  seed: {member: true}\n";
   const auto sweep = run_cli({"sweep", "sweep.yaml", "--out", "campaign", "--quiet"}, work.path());
   ASSERT_EQ(sweep.exit_status, 0) << sweep.err;
   test::run_python_file(

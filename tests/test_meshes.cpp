@@ -6,11 +6,10 @@
 // summary, and bad meshes giving one line and no output.
 #include <gtest/gtest.h>
 
-#include <nlohmann/json.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <random>
 #include <string>
 
@@ -29,8 +28,8 @@ using test::run_cli;
 using test::TempDir;
 
 void expect_near(const Eigen::Vector3d& actual, const Eigen::Vector3d& expected) {
-  EXPECT_LT((actual - expected).norm(), 1e-12) << actual.transpose() << " vs "
-                                               << expected.transpose();
+  EXPECT_LT((actual - expected).norm(), 1e-12)
+      << actual.transpose() << " vs " << expected.transpose();
 }
 
 TEST(MeshPlacement, YawTurnsClockwiseFromNorthLikeAHeading) {
@@ -128,10 +127,11 @@ end_header
 
 class Meshes : public ::testing::Test {
  protected:
-  void write(const std::string& file, const std::string& text) { std::ofstream(dir_ / file) << text; }
+  void write(const std::string& file, const std::string& text) {
+    std::ofstream(dir_ / file) << text;
+  }
   CliResult run(const std::string& name, const std::string& meshes) {
-    std::ofstream(dir_ / (name + ".yaml"))
-        << "name: " << name << R"(
+    std::ofstream(dir_ / (name + ".yaml")) << "name: " << name << R"(
 seed: 3
 origin: {lat: 48.6881, lon: 10.8447, h: 450.0}
 sensor: {model: milows, mount: {roll_deg: 0, pitch_deg: -4, yaw_deg: 0, lever_arm_m: [0, 0, 0]}}
@@ -147,18 +147,35 @@ scene:
                     "--outputs", "points,summary", "--out", (dir_ / name).string()},
                    dir_.path());
   }
+  // Models that name files outside their folder: an OBJ's material library on a device and out of
+  // the folder, a glTF's buffer in /etc.
+  void write_hostile_meshes() {
+    const std::string triangle = "v 0 0 0\nv 10 0 0\nv 0 10 0\nf 1 2 3\n";
+    write("mtl_device.obj", "mtllib /dev/zero\n" + triangle);
+    write("mtl_above.obj", "mtllib ../above.mtl\n" + triangle);
+    write("buffer_passwd.gltf",
+          R"({"asset":{"version":"2.0"},"buffers":[{"uri":"/etc/passwd","byteLength":36}],)"
+          R"("bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":36}],"accessors":[{)"
+          R"("bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],)"
+          R"("max":[1,1,1]}],"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)"
+          R"("nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}],"scene":0})");
+    write("with_material.obj", "mtllib materials/wood.mtl\n" + triangle);
+    fs::create_directories(dir_ / "materials");
+    write("materials/wood.mtl", "newmtl wood\nKd 0.5 0.4 0.3\n");
+  }
+
   TempDir dir_{"owsim_meshes"};
 };
 
 TEST_F(Meshes, FilesAreReadAsTriangles) {
   write("barn.obj", kBarnObj);
   write("tower.ply", kTowerPly);
-  const TriangleMesh barn = read_mesh_file(dir_ / "barn.obj");
+  const TriangleMesh barn = read_mesh_file(dir_ / "barn.obj").mesh;
   EXPECT_EQ(barn.triangles.size(), 14u);
   double top = 0.0;
   for (const auto& vertex : barn.vertices) top = std::max(top, vertex.z());
   EXPECT_EQ(top, 13.0);
-  const TriangleMesh tower = read_mesh_file(dir_ / "tower.ply");
+  const TriangleMesh tower = read_mesh_file(dir_ / "tower.ply").mesh;
   EXPECT_EQ(tower.triangles.size(), 6u);
   EXPECT_EQ(tower.vertices.size(), 5u);
 }
@@ -167,19 +184,25 @@ TEST_F(Meshes, ReturnsLieOnTheMeshesAndEachMeshIsAnObject) {
   write("barn.obj", kBarnObj);
   write("tower.ply", kTowerPly);
   // The tower by latitude and longitude: about 280 m east, 40 m south of the origin.
-  const CliResult result = run("two", R"(    - {id: barn, file: barn.obj, at: {e: 150, n: 35, u: 2}, yaw_deg: 30, reflectivity: 0.3}
+  const CliResult result = run(
+      "two",
+      R"(    - {id: barn, file: barn.obj, at: {e: 150, n: 35, u: 2}, yaw_deg: 30, reflectivity: 0.3}
     - {id: tower, file: tower.ply, at: {lat: 48.68774, lon: 10.84850, h: 452.5}, yaw_deg: -20,
        scale: 2, up_axis: y, class: pole, reflectivity: 0.2}
 )");
   ASSERT_EQ(result.exit_status, 0) << result.err;
-  const nlohmann::json spec = {
-      {"origin", {48.6881, 10.8447, 450.0}},
-      {"meshes",
-       {{{"id", "barn"}, {"file", "barn.obj"}, {"at", {{"e", 150}, {"n", 35}, {"u", 2}}},
-         {"yaw_deg", 30}},
-        {{"id", "tower"}, {"file", "tower.ply"},
-         {"at", {{"lat", 48.68774}, {"lon", 10.84850}, {"h", 452.5}}}, {"yaw_deg", -20},
-         {"scale", 2}, {"up_axis", "y"}}}}};
+  const nlohmann::json spec = {{"origin", {48.6881, 10.8447, 450.0}},
+                               {"meshes",
+                                {{{"id", "barn"},
+                                  {"file", "barn.obj"},
+                                  {"at", {{"e", 150}, {"n", 35}, {"u", 2}}},
+                                  {"yaw_deg", 30}},
+                                 {{"id", "tower"},
+                                  {"file", "tower.ply"},
+                                  {"at", {{"lat", 48.68774}, {"lon", 10.84850}, {"h", 452.5}}},
+                                  {"yaw_deg", -20},
+                                  {"scale", 2},
+                                  {"up_axis", "y"}}}}};
   std::ofstream(dir_ / "spec.json") << spec.dump();
   const std::string verdict = test::run_python_file(
       fs::path(OWSIM_SOURCE_DIR) / "tests/oracles/mesh_oracle.py",
@@ -205,22 +228,47 @@ TEST_F(Meshes, ReturnsLieOnTheMeshesAndEachMeshIsAnObject) {
   EXPECT_EQ(entry("tower")["returns"], tower);
 }
 
+// At the seam: the mesh module opens nothing outside the model's folder tree, whoever calls it,
+// and says what else it read (a run folder copies those with the model).
+TEST_F(Meshes, AModelReadsOnlyFilesBesideOrBelowIt) {
+  write_hostile_meshes();
+  for (const char* model : {"mtl_device.obj", "mtl_above.obj", "buffer_passwd.gltf"}) {
+    SCOPED_TRACE(model);
+    try {
+      (void)read_mesh_file(dir_ / model);
+      FAIL() << "read";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("the mesh refers to"), std::string::npos) << e.what();
+    }
+  }
+  const MeshFile read = read_mesh_file(dir_ / "with_material.obj");
+  EXPECT_EQ(read.mesh.triangles.size(), 1u);
+  EXPECT_EQ(read.companions, std::vector<fs::path>{fs::canonical(dir_ / "materials/wood.mtl")});
+}
+
 TEST_F(Meshes, BadMeshesGiveOneLineAndNoOutput) {
   write("barn.obj", kBarnObj);
   write("points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
   write("lines.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2 3\n");
   write("garbage.ply", "ply\nformat ascii 1.0\nelement vertex two\nend_header\n");
+  write_hostile_meshes();
+  fs::create_symlink("/dev/zero", dir_ / "zero.obj");
   const struct {
     std::string entry;
     std::string says;
   } cases[] = {
-      {"{id: m, file: missing.obj, at: {e: 0, n: 0}}", "missing.obj: cannot read the mesh"},
+      {"{id: m, file: missing.obj, at: {e: 0, n: 0}}", "file: no such file: "},
       {"{id: m, file: points.obj, at: {e: 0, n: 0}}", "points.obj: "},
       {"{id: m, file: lines.obj, at: {e: 0, n: 0}}", "lines.obj: the mesh has no triangles"},
       {"{id: m, file: garbage.ply, at: {e: 0, n: 0}}", "garbage.ply: cannot read the mesh"},
       {"{id: m, file: barn.obj, at: {e: 0, n: 0}, class: wire}", "class"},
       {"{id: m, file: barn.obj, at: {e: 0, n: 0}, scale: 0}", "scale"},
       {"{id: m, file: barn.obj, at: {e: 0, n: 0}, up_axis: x}", "up_axis"},
+      // Issue 33: the mesh file and what it names stay in the scenario's folder tree.
+      {"{id: m, file: /etc/passwd, at: {e: 0, n: 0}}", "outside the folder"},
+      {"{id: m, file: zero.obj, at: {e: 0, n: 0}}", "outside the folder"},
+      {"{id: m, file: mtl_device.obj, at: {e: 0, n: 0}}", "the mesh refers to"},
+      {"{id: m, file: buffer_passwd.gltf, at: {e: 0, n: 0}}", "the mesh refers to"},
   };
   for (const auto& bad : cases) {
     SCOPED_TRACE(bad.entry);

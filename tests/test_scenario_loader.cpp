@@ -425,9 +425,9 @@ TEST(ScenarioLoader, TrajectoryFileAndItsOptions) {
   EXPECT_EQ(csv.trajectory.smoothing_degree, 3);
   const Scenario sbet = load_scenario_text(
       head + "trajectory: {file: " + (folder.path() / "flight.txt").string() + ", format: sbet}\n",
-      "/elsewhere/s.yaml");
+      scenario);
   EXPECT_EQ(sbet.trajectory.format, "sbet");
-  EXPECT_EQ(sbet.trajectory.file, folder.path() / "flight.txt");  // absolute stays as given
+  EXPECT_EQ(sbet.trajectory.file, folder.path() / "flight.txt");  // absolute, in its folder tree
 }
 
 TEST(ScenarioLoader, TerrainForms) {
@@ -838,9 +838,9 @@ TEST(ScenarioLoaderErrors, TerrainFiles) {
   const std::filesystem::path scenario = folder.path() / "s.yaml";
   const std::string where = scenario.string() + ":";
   const std::string m = kMinimal;
-  EXPECT_EQ(error_of(m + "scene:\n  terrain: {grid: nothere.asc}\n", scenario),
-            where + "8: scene.terrain.grid: " + (folder.path() / "nothere.asc").string() +
-                ": cannot read the terrain grid file: no such file");
+  EXPECT_EQ(
+      error_of(m + "scene:\n  terrain: {grid: nothere.asc}\n", scenario),
+      where + "8: scene.terrain.grid: no such file: " + (folder.path() / "nothere.asc").string());
   EXPECT_EQ(error_of(m + "scene:\n  terrain: {grid: bad.asc}\n", scenario),
             where + "8: scene.terrain.grid: " + (folder.path() / "bad.asc").string() +
                 ":5: unknown header key 'cellsiz'");

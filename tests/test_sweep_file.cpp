@@ -1,8 +1,6 @@
 // The sweep file (io/sweep/sweep_file.hpp): what it reads, the draws of each distribution against
 // their moments, draws keyed by (seed, member, key) alone, the member scenarios the loader reads
 // back with the drawn values, and one line naming file, line and key for every bad input.
-#include "io/sweep/sweep_file.hpp"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,6 +9,7 @@
 
 #include "geometry/error.hpp"
 #include "io/scenario/scenario_loader.hpp"
+#include "io/sweep/sweep_file.hpp"
 #include "tests/cli_runner.hpp"
 
 namespace owsim {
@@ -20,10 +19,11 @@ namespace fs = std::filesystem;
 
 const fs::path kExamples = fs::path(OWSIM_SOURCE_DIR) / "examples";
 
-SweepSpec example() { return read_sweep_file(kExamples / "sweeps" / "corridor_sweep.yaml"); }
+SweepSpec example() { return read_sweep_file(kExamples / "corridor_sweep.yaml"); }
 
 std::string error_of(const std::string& text) {
-  test::TempDir work;
+  const test::TempDir work;
+  fs::copy_file(kExamples / "corridor.yaml", work.path() / "corridor.yaml");
   const fs::path file = work.path() / "sweep.yaml";
   std::ofstream(file) << text;
   try {
@@ -35,7 +35,8 @@ std::string error_of(const std::string& text) {
   return "no error";
 }
 
-const std::string kHead = "base: " + (kExamples / "corridor.yaml").string() + "\ncount: 4\n";
+// A sweep file reads only its own folder tree: each test copies the base beside it.
+const std::string kHead = "base: corridor.yaml\ncount: 4\n";
 
 TEST(SweepFile, ReadsTheExample) {
   const SweepSpec spec = example();
@@ -86,7 +87,7 @@ TEST(SweepFile, DrawsFollowTheirDistributions) {
 TEST(SweepFile, AMembersDrawsDependOnlyOnSeedMemberAndKey) {
   SweepSpec spec = example();
   const std::vector<std::string> before = member_values(spec, 13);
-  spec.count = 1'000'000;  // more members
+  spec.count = 1'000'000;                  // more members
   spec.vary.erase(spec.vary.begin() + 1);  // another key gone
   const std::vector<std::string> after = member_values(spec, 13);
   EXPECT_EQ(after[0], before[0]);
@@ -98,6 +99,7 @@ TEST(SweepFile, AMembersDrawsDependOnlyOnSeedMemberAndKey) {
 
 TEST(SweepFile, ValuesTakeTheirItemsInTurn) {
   test::TempDir work;
+  fs::copy_file(kExamples / "corridor.yaml", work.path() / "corridor.yaml");
   const fs::path file = work.path() / "sweep.yaml";
   std::ofstream(file) << kHead << "vary:\n  sensor.model: {values: [milows, hellas, milows]}\n";
   const SweepSpec spec = read_sweep_file(file);
@@ -110,8 +112,7 @@ TEST(SweepFile, MemberScenariosCarryTheDrawnValues) {
   const SweepSpec spec = example();
   for (const std::int64_t m : {0, 5, 19}) {
     const std::vector<std::string> values = member_values(spec, m);
-    const Scenario scenario =
-        load_scenario_text(member_scenario_text(spec, m), spec.base);
+    const Scenario scenario = load_scenario_text(member_scenario_text(spec, m), spec.base);
     EXPECT_DOUBLE_EQ(scenario.scene.spans.at(0).conductor_diameter_m, std::stod(values[0]) / 1000);
     EXPECT_DOUBLE_EQ(scenario.scene.spans.at(1).conductor_diameter_m, 0.021);  // untouched
     EXPECT_EQ(scenario.trajectory.speed_mps, std::stod(values[1]));
@@ -135,15 +136,16 @@ TEST(SweepFile, BadInputNamesFileLineAndKey) {
             std::string::npos);
   EXPECT_NE(error_of(kHead + "vary: {}\nextra: 1\n").find("sweep.yaml:4: extra: unknown key"),
             std::string::npos);
-  EXPECT_NE(error_of("base: " + (kExamples / "corridor.yaml").string() + "\ncount: 0\nvary: {}\n")
-                .find("sweep.yaml:2: count:"),
+  EXPECT_NE(error_of("base: corridor.yaml\ncount: 0\nvary: {}\n").find("sweep.yaml:2: count:"),
             std::string::npos);
 }
 
 TEST(SweepFile, AKeyPathThatLeadsNowhereIsNamed) {
   test::TempDir work;
+  fs::copy_file(kExamples / "corridor.yaml", work.path() / "corridor.yaml");
   const fs::path file = work.path() / "sweep.yaml";
-  std::ofstream(file) << kHead << "vary:\n  scene.spans[40].conductor.diameter_mm: {member: true}\n";
+  std::ofstream(file) << kHead
+                      << "vary:\n  scene.spans[40].conductor.diameter_mm: {member: true}\n";
   const SweepSpec spec = read_sweep_file(file);
   try {
     static_cast<void>(member_scenario_text(spec, 0));

@@ -347,9 +347,10 @@ void FlightOutputs::finish(const nlohmann::json& run_facts) {
   if (trajectory_) trajectory_->finish();
   if (truth_) truth_->finish();
   if (quicklook_) quicklook_->finish();
-  if (!options_.scenario_yaml.empty()) {
+  if (!options_.scenario.yaml.empty()) {
+    write_input_copies(options_.directory, options_.scenario.inputs);
     AtomicOutputFile scenario(options_.directory / "scenario.yaml");
-    scenario.write(options_.scenario_yaml);
+    scenario.write(options_.scenario.yaml);
     scenario.commit();
   }
   if (wants(OutputKind::summary)) {

@@ -27,6 +27,7 @@
 #include "io/run/frame_encoder.hpp"
 #include "io/run/frame_encoding.hpp"
 #include "io/run/output_kind.hpp"
+#include "io/scenario/scenario_as_flown.hpp"
 #include "sensor/frame_view.hpp"
 #include "sensor/mounting.hpp"
 #include "sensor/scan_params.hpp"
@@ -44,9 +45,9 @@ struct FlightOutputOptions {
   // What computes each frame's truth.csv rows (evaluation/frame_truth.hpp); must outlive the
   // outputs. Null: truth.csv is not written even if asked for.
   const FrameTruthSource* truth = nullptr;
-  // scenario.yaml, the scenario as flown (io/scenario/scenario_as_flown.hpp): written by finish()
-  // when not empty.
-  std::string scenario_yaml;
+  // scenario.yaml, the scenario as flown (io/scenario/scenario_as_flown.hpp), and the copies of
+  // the files it names: written by finish() when the text is not empty.
+  FlownScenario scenario;
 };
 
 class WordSink;

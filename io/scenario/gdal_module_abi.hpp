@@ -4,7 +4,7 @@
 // owsim_gdal_module_abi() differs from OWSIM_GDAL_MODULE_ABI.
 #include <cstddef>
 
-#define OWSIM_GDAL_MODULE_ABI 2
+#define OWSIM_GDAL_MODULE_ABI 3
 
 extern "C" {
 
@@ -16,7 +16,9 @@ typedef void (*owsim_dem_sink)(void* context, int ncols, int nrows, const double
                                const unsigned char* valid);
 
 typedef int (*owsim_gdal_module_abi_fn)(void);
-// Reads band 1 of the raster at `path`: the posts (cell centres) inside the WGS-84 box
+// Only the drivers gdal_module.cpp lists open a file (formats that hold their data in the file and
+// sidecars beside it: no VRT, no in-memory or network dataset). Reads band 1 of the raster at
+// `path`: the posts (cell centres) inside the WGS-84 box
 // [lon_min, lon_max] × [lat_min, lat_max] and one post around it, or every post when
 // whole_file is non-zero, reprojected from the CRS the file declares to WGS-84 (EPSG:4979).
 // Returns 0 and calls `sink` once, or returns non-zero with a one-line message in `error`.
@@ -30,9 +32,18 @@ typedef int (*owsim_dem_read_fn)(const char* path, int whole_file, double lon_mi
 // "properties": {field: number or string, ...}, "coordinates": [[lon, lat], ...]} (WGS-84
 // degrees).
 typedef void (*owsim_line_sink)(void* context, const char* line_json);
-// Reads every line of every layer of the vector file at `path` (GeoJSON, or any format OGR
-// reads), reprojected from its CRS to WGS-84. Returns 0 after calling `sink` for each line (at
+// Reads every line of every layer of the vector file at `path` (GeoJSON, or the other formats
+// gdal_module.cpp lists), reprojected from its CRS to WGS-84. Returns 0 after calling `sink` for each line (at
 // least one), or non-zero with a one-line message in `error`.
 typedef int (*owsim_lines_read_fn)(const char* path, owsim_line_sink sink, void* sink_context,
                                    char* error, std::size_t error_size);
+
+// Receives one file name.
+typedef void (*owsim_file_sink)(void* context, const char* path);
+// The files of the dataset at `path` (GDAL's file list: the file and its sidecars — a shapefile's
+// .shx, .dbf and .prj, a raster's .aux.xml or world file), opened as owsim_dem_read (vector == 0)
+// or owsim_lines_read (vector != 0) would open it. Returns 0 after calling `sink` for each, or
+// non-zero with a one-line message in `error`.
+typedef int (*owsim_dataset_files_fn)(const char* path, int vector, owsim_file_sink sink,
+                                      void* sink_context, char* error, std::size_t error_size);
 }

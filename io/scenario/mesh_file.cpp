@@ -12,7 +12,7 @@ namespace {
 
 void receive_mesh(void* context, std::size_t vertex_count, const double* xyz,
                   std::size_t triangle_count, const unsigned* corners) {
-  auto* mesh = static_cast<TriangleMesh*>(context);
+  TriangleMesh* mesh = &static_cast<MeshFile*>(context)->mesh;
   mesh->vertices.resize(vertex_count);
   for (std::size_t v = 0; v < vertex_count; ++v) {
     mesh->vertices[v] = {xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]};
@@ -23,18 +23,22 @@ void receive_mesh(void* context, std::size_t vertex_count, const double* xyz,
   }
 }
 
+void receive_companion(void* context, const char* path) {
+  static_cast<MeshFile*>(context)->companions.emplace_back(path);
+}
+
 }  // namespace
 
-TriangleMesh read_mesh_file(const std::filesystem::path& file) {
+MeshFile read_mesh_file(const std::filesystem::path& file) {
   const OptionalModule& module =
       OptionalModule::get("mesh", "triangle meshes (meshes)", OWSIM_MESH_MODULE_ABI);
   const auto read = reinterpret_cast<owsim_mesh_read_fn>(module.symbol("owsim_mesh_read"));
-  TriangleMesh mesh;
+  MeshFile mesh;
   std::array<char, 1024> error{};
-  if (read(file.c_str(), receive_mesh, &mesh, error.data(), error.size()) != 0) {
+  if (read(file.c_str(), receive_mesh, receive_companion, &mesh, error.data(), error.size()) != 0) {
     throw Error(file.string() + ": " + error.data());
   }
-  if (mesh.triangles.empty()) throw Error(file.string() + ": the mesh has no triangles");
+  if (mesh.mesh.triangles.empty()) throw Error(file.string() + ": the mesh has no triangles");
   return mesh;
 }
 

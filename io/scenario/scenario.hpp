@@ -66,6 +66,14 @@ struct SceneSpec {
   double fog_backscatter_ratio_sr = 0.0154;  // key weather.backscatter_ratio_sr
 };
 
+// A file a scenario read (canonical), with the files reading it pulled in beside or below it (a
+// mesh's materials and buffers, a shapefile's .dbf, a raster's sidecars): what a run folder copies
+// so that its scenario.yaml reads only its own folder tree (io/scenario/scenario_as_flown.hpp).
+struct InputFile {
+  std::filesystem::path file;
+  std::vector<std::filesystem::path> companions;
+};
+
 struct Scenario {
   std::string name;            // the output folder's default name; the file's stem by default
   std::filesystem::path path;  // the scenario file (empty when built in code)
@@ -76,6 +84,7 @@ struct Scenario {
   Mount mount;              // sensor.mount
   TrajectorySpec trajectory;
   SceneSpec scene;
+  std::vector<InputFile> input_files;  // every file its keys named, in the order read
 };
 
 }  // namespace owsim

@@ -3,13 +3,19 @@
 // as it was flown, so `owsim view`, `owsim pd` and `owsim score` need no --scenario, and `owsim run
 // scenario.yaml` flies the same frames again. The scenario's own YAML with the run's overrides
 // written in (seed, range noise off, the duration of the frames flown) and every file it names
-// (trajectory.file, scene.terrain.grid / dem, scene.meshes[].file, scene.power_lines[].file) made
-// absolute, so the copy works from any folder. Comments are not kept; keys keep their order.
+// (trajectory.file, scene.terrain.grid / dem, scene.meshes[].file, scene.power_lines[].file)
+// copied into the run folder as inputs/<k>/<name> (the k-th file read, with the files it pulled
+// in at their places relative to it), so the run folder reads only its own tree — it is a scenario
+// like any other (issue 33) — and works from any folder. Comments are not kept; keys keep their
+// order.
 #include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
+
+#include "io/scenario/scenario.hpp"
 
 namespace owsim {
 
@@ -19,10 +25,28 @@ struct FlownOverrides {
   std::optional<double> duration_s;  // set when the run chose its frames (--frames, --duration)
 };
 
-// The YAML text of the scenario `yaml`, read from (or anchored at) `path`, as flown. Throws
-// owsim::Error naming `path` if the text is not a YAML map.
-[[nodiscard]] std::string scenario_as_flown(std::string_view yaml,
-                                            const std::filesystem::path& path,
-                                            const FlownOverrides& overrides);
+// A file the run folder holds a copy of: `target` relative to the folder.
+struct InputCopy {
+  std::filesystem::path source;
+  std::filesystem::path target;
+  friend bool operator==(const InputCopy&, const InputCopy&) = default;
+};
+
+struct FlownScenario {
+  std::string yaml;
+  std::vector<InputCopy> inputs;
+};
+
+// The scenario `yaml`, read from (or anchored at) `path`, as flown, with `input_files` (what the
+// loader read: Scenario::input_files) as the copies its file keys now name. Throws owsim::Error
+// naming `path` if the text is not a YAML map.
+[[nodiscard]] FlownScenario scenario_as_flown(std::string_view yaml,
+                                              const std::filesystem::path& path,
+                                              const FlownOverrides& overrides,
+                                              const std::vector<InputFile>& input_files);
+
+// Places every copy in `folder` (hard links where the file system allows, else copies; a copy
+// appears under its name only when complete). Throws owsim::FileError naming the file.
+void write_input_copies(const std::filesystem::path& folder, const std::vector<InputCopy>& inputs);
 
 }  // namespace owsim

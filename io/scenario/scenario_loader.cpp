@@ -12,8 +12,10 @@
 #include "geometry/mesh_placement.hpp"
 #include "geometry/number_text.hpp"
 #include "geometry/utm.hpp"
+#include "io/files/confined_path.hpp"
 #include "io/scenario/dem_terrain.hpp"
 #include "io/scenario/esri_ascii_grid.hpp"
+#include "io/scenario/gdal_module.hpp"
 #include "io/scenario/gis_lines.hpp"
 #include "io/scenario/mesh_file.hpp"
 #include "io/scenario/value_ranges.hpp"
@@ -144,9 +146,24 @@ class ScenarioReader {
     frame_.emplace(origin);
   }
 
-  std::filesystem::path resolve(const std::string& file) const {
-    const std::filesystem::path given(file);
-    return given.is_absolute() || folder_.empty() ? given : folder_ / given;
+  // The file a key names: a local regular file in the scenario's folder tree (the current folder
+  // for a scenario given as text), checked before anything opens it (io/files/confined_path.hpp).
+  std::filesystem::path input_file(const YamlValue& value) const {
+    try {
+      return confined_file(folder_, value.text());
+    } catch (const Error& error) {
+      value.fail(error.what());
+    }
+  }
+  // Records a file read (once) with the files it pulled in: those in its folder's tree.
+  void add_input(const std::filesystem::path& file, std::vector<std::filesystem::path> companions) {
+    for (const InputFile& known : scenario_.input_files) {
+      if (known.file == file) return;
+    }
+    std::erase_if(companions, [&](const std::filesystem::path& companion) {
+      return !inside_tree(file.parent_path(), companion);
+    });
+    scenario_.input_files.push_back({file, std::move(companions)});
   }
 
   // ---- sensor ----
@@ -292,12 +309,8 @@ class ScenarioReader {
 
   void read_trajectory_file(YamlMap& map, const YamlValue& file) {
     TrajectorySpec& trajectory = scenario_.trajectory;
-    const std::string name = file.text();
-    if (name.empty()) file.fail("expected a file name, got ''");
-    trajectory.file = resolve(name);
-    if (!std::filesystem::is_regular_file(trajectory.file)) {
-      file.fail("no such file: " + trajectory.file.string());
-    }
+    trajectory.file = input_file(file);
+    add_input(trajectory.file, {});
     if (const auto format = map.get("format")) {
       trajectory.format = format->one_of({"hellsim", "csv", "sbet"});
     } else {
@@ -542,8 +555,11 @@ class ScenarioReader {
     }
     if (const auto given = map.get("reflectivity")) mesh.reflectivity = fraction(*given);
     map.finish();
+    const std::filesystem::path file = input_file(file_value);
     try {
-      mesh.mesh = placed_mesh(read_mesh_file(resolve(file_value.text())), placement);
+      MeshFile read = read_mesh_file(file);
+      mesh.mesh = placed_mesh(read.mesh, placement);
+      add_input(file, std::move(read.companions));
     } catch (const Error& error) {
       file_value.fail(error.what());
     }
@@ -588,11 +604,11 @@ class ScenarioReader {
       terrain.flat_u_m = flat->number();
       return;
     }
-    const std::string name = grid->text();
-    if (name.empty()) grid->fail("expected a file name, got ''");
+    const std::filesystem::path file = input_file(*grid);
+    add_input(file, {});
     try {
-      terrain.grid = read_esri_ascii_grid(resolve(name).string());
-      terrain.grid.validate(resolve(name).string());
+      terrain.grid = read_esri_ascii_grid(file.string());
+      terrain.grid.validate(file.string());
     } catch (const FileError& error) {
       try {
         grid->fail(error.what());
@@ -609,9 +625,7 @@ class ScenarioReader {
   // when the caller can read it, widened by the counter's timeout range; else the whole raster),
   // and the flight must lie on it.
   void read_dem(const YamlValue& value) {
-    const std::string name = value.text();
-    if (name.empty()) value.fail("expected a file name, got ''");
-    const std::filesystem::path file = resolve(name);
+    const std::filesystem::path file = input_file(value);
     Terrain& terrain = scenario_.scene.terrain;
     const TrajectorySpec& route = scenario_.trajectory;
     std::vector<Eigen::Vector2d> flight;
@@ -630,14 +644,15 @@ class ScenarioReader {
     }
     try {
       terrain.dem = read_dem_terrain(file, *frame_, reach);
+      add_input(file, dataset_companions(file, false));
     } catch (const Error& error) {
       value.fail(error.what());
     }
     terrain.kind = TerrainKind::dem;
     for (const Eigen::Vector2d& point : flight) {
       if (!terrain.dem.covers(point.x(), point.y())) {
-        value.fail(file.string() + ": does not cover the flight (at e = " +
-                   number_text(point.x()) + ", n = " + number_text(point.y()) + " m)");
+        value.fail(file.string() + ": does not cover the flight (at e = " + number_text(point.x()) +
+                   ", n = " + number_text(point.y()) + " m)");
       }
     }
   }
@@ -719,9 +734,7 @@ class ScenarioReader {
   void read_power_lines(const YamlValue& value) {
     YamlMap map(value);
     const YamlValue file_value = map.require("file");
-    const std::string name = file_value.text();
-    if (name.empty()) file_value.fail("expected a file name, got ''");
-    const std::filesystem::path file = resolve(name);
+    const std::filesystem::path file = input_file(file_value);
     std::string prefix = file.stem().string();
     if (const auto id = map.get("id")) {
       prefix = id->text();
@@ -735,13 +748,14 @@ class ScenarioReader {
     std::vector<GisLine> lines;
     try {
       lines = read_gis_lines(file);
+      add_input(file, dataset_companions(file, true));
     } catch (const Error& error) {
       file_value.fail(error.what());
     }
     for (std::size_t i = 0; i < lines.size(); ++i) {
       const GisLine& line = lines[i];
-      const std::string feature = file.filename().string() + " feature " +
-                                  std::to_string(line.feature);
+      const std::string feature =
+          file.filename().string() + " feature " + std::to_string(line.feature);
       std::string line_name = lines.size() == 1 ? prefix : prefix + "-" + std::to_string(i + 1);
       SpanSpec spec = common;
       try {
@@ -750,7 +764,8 @@ class ScenarioReader {
         file_value.fail(feature + ": " + error.what());
       }
       if (spec.support_height_1_m != spec.support_height_2_m) {
-        file_value.fail(feature + ": a line's towers share one height: give support_heights_m "
+        file_value.fail(feature +
+                        ": a line's towers share one height: give support_heights_m "
                         "[h, h] or the property support_height_m");
       }
       if (line.lon_lat.size() < 2) {
@@ -768,7 +783,8 @@ class ScenarioReader {
                                     SpanSpec& spec) {
     const auto number = [&](const char* key) -> std::optional<double> {
       if (!properties.contains(key)) return std::nullopt;
-      if (!properties[key].is_number()) throw Error(std::string("property ") + key + " is not a number");
+      if (!properties[key].is_number())
+        throw Error(std::string("property ") + key + " is not a number");
       return properties[key].get<double>();
     };
     if (properties.contains("name")) {
@@ -814,8 +830,8 @@ class ScenarioReader {
       span.to_en = towers[k + 1].head<2>();
       span.support_poles = false;
       if (span.from_en == span.to_en) {
-        where.fail(feature + ": towers " + std::to_string(k + 1) + " and " +
-                   std::to_string(k + 2) + " coincide");
+        where.fail(feature + ": towers " + std::to_string(k + 1) + " and " + std::to_string(k + 2) +
+                   " coincide");
       }
       add_span(std::move(span), where.path());
     }

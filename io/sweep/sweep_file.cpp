@@ -8,6 +8,7 @@
 
 #include "geometry/error.hpp"
 #include "geometry/keyed_random.hpp"
+#include "io/files/confined_path.hpp"
 #include "io/files/input_file.hpp"
 #include "io/scenario/yaml_reader.hpp"
 
@@ -113,8 +114,8 @@ SweepSpec read_sweep_file(const std::filesystem::path& path) {
   const YamlSource source = YamlSource::from_text(spec.text, path.string());
   YamlMap root(source.root());
   const YamlValue base = root.require("base");
-  spec.base = path.parent_path() / base.text();
   try {
+    spec.base = confined_file(path.parent_path(), base.text());
     spec.base_text = read_input_file(spec.base, "base scenario", kMaxScenarioBytes);
   } catch (const Error& e) {
     base.fail(e.what());

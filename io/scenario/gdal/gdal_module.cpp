@@ -1,7 +1,7 @@
-// libowsim_gdal.so: the one place owsim touches GDAL. Loaded on demand by io/scenario/dem_terrain.cpp
-// when a scenario's terrain is a DEM and by io/scenario/gis_lines.cpp when it reads power lines
-// from GIS files, so that the owsim executable, libowsim_c.so and the Python
-// module never map GDAL and the library tree behind it. The entry points are plain C: no
+// libowsim_gdal.so: the one place owsim touches GDAL. Loaded on demand by
+// io/scenario/dem_terrain.cpp when a scenario's terrain is a DEM and by io/scenario/gis_lines.cpp
+// when it reads power lines from GIS files, so that the owsim executable, libowsim_c.so and the
+// Python module never map GDAL and the library tree behind it. The entry points are plain C: no
 // exception crosses them.
 //
 // Posts are the raster's cell centres (GDAL's convention for both AREA and POINT rasters: the
@@ -14,17 +14,17 @@
 // ellipsoidal heights (PROJ passes them through).
 #include <cpl_conv.h>
 #include <cpl_error.h>
+#include <cpl_string.h>
 #include <gdal.h>
 #include <ogr_api.h>
 #include <ogr_srs_api.h>
-
-#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <exception>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -82,20 +82,49 @@ Window window_of(const double gt[6], int width, int height, OGRCoordinateTransfo
   if (c_hi < 0 || r_hi < 0 || c_lo > width - 1 || r_lo > height - 1 || col1 <= window.col0 ||
       row1 <= window.row0) {
     throw std::runtime_error("does not cover the flight's area (lon " + std::to_string(lon_min) +
-                             " to " + std::to_string(lon_max) + ", lat " +
-                             std::to_string(lat_min) + " to " + std::to_string(lat_max) + ")");
+                             " to " + std::to_string(lon_max) + ", lat " + std::to_string(lat_min) +
+                             " to " + std::to_string(lat_max) + ")");
   }
   window.ncols = col1 - window.col0 + 1;
   window.nrows = row1 - window.row0 + 1;
   return window;
 }
 
+// The drivers a scenario's files are opened with (issue 33): formats that hold their data in the
+// file itself (and sidecars beside it), never a VRT (it names other files, anywhere), an in-memory
+// dataset (MEM: reads any address) or a network service (WMS, WCS, …).
+const char* const kDemDrivers[] = {"GTiff",   "AAIGrid", "EHdr", "SRTMHGT",
+                                   "USGSDEM", "XYZ",     "HFA",  nullptr};
+const char* const kLineDrivers[] = {"GeoJSON",    "GeoJSONSeq", "ESRI Shapefile", "GPKG",
+                                    "FlatGeobuf", "KML",        nullptr};
+
+std::string driver_list(const char* const* drivers) {
+  std::string list;
+  for (const char* const* driver = drivers; *driver != nullptr; ++driver) {
+    if (!list.empty()) list += ", ";
+    list += *driver;
+  }
+  return list;
+}
+
+// Opens `path` with one of `drivers` only; a file another driver would read is refused by name.
+Dataset open_confined(const char* path, unsigned kind, const char* const* drivers,
+                      const char* what) {
+  Dataset dataset(GDALOpenEx(path, kind | GDAL_OF_READONLY, drivers, nullptr, nullptr));
+  if (dataset) return dataset;
+  const std::string reason = gdal_reason();
+  if (GDALDriverH other = GDALIdentifyDriverEx(path, kind, nullptr, nullptr)) {
+    throw std::runtime_error(std::string("a ") + GDALGetDriverShortName(other) + " file, which " +
+                             what + " does not accept (it reads " + driver_list(drivers) + ")");
+  }
+  throw std::runtime_error("GDAL cannot open it as " + driver_list(drivers) + reason);
+}
+
 void read_dem(const char* path, bool whole_file, double lon_min, double lat_min, double lon_max,
               double lat_max, owsim_dem_sink sink, void* sink_context) {
   GDALAllRegister();
   CPLErrorReset();
-  const Dataset dataset(GDALOpen(path, GA_ReadOnly));
-  if (!dataset) throw std::runtime_error("GDAL cannot open it" + gdal_reason());
+  const Dataset dataset = open_confined(path, GDAL_OF_RASTER, kDemDrivers, "terrain.dem");
   if (GDALGetRasterCount(dataset.get()) < 1) throw std::runtime_error("has no raster band");
   double gt[6];
   if (GDALGetGeoTransform(dataset.get(), gt) != CE_None) {
@@ -117,8 +146,10 @@ void read_dem(const char* path, bool whole_file, double lon_min, double lat_min,
   const Transform to_wgs(OCTNewCoordinateTransformationEx(source.get(), wgs84.get(), options));
   OCTDestroyCoordinateTransformationOptions(options);
   if (!to_wgs) {
-    throw std::runtime_error("GDAL/PROJ cannot transform its CRS to WGS-84 exactly (a vertical "
-                             "datum's grid missing?)" + gdal_reason());
+    throw std::runtime_error(
+        "GDAL/PROJ cannot transform its CRS to WGS-84 exactly (a vertical "
+        "datum's grid missing?)" +
+        gdal_reason());
   }
   const int width = GDALGetRasterXSize(dataset.get()), height = GDALGetRasterYSize(dataset.get());
   Window window{0, 0, width, height};
@@ -141,7 +172,8 @@ void read_dem(const char* path, bool whole_file, double lon_min, double lat_min,
   }
   int has_nodata = 0;
   const double nodata = GDALGetRasterNoDataValue(band, &has_nodata);
-  const double scale = GDALGetRasterScale(band, nullptr), offset = GDALGetRasterOffset(band, nullptr);
+  const double scale = GDALGetRasterScale(band, nullptr),
+               offset = GDALGetRasterOffset(band, nullptr);
   std::vector<double> x(count), y(count), z(count);
   std::vector<unsigned char> valid(count);
   for (int r = 0; r < window.nrows; ++r) {
@@ -168,7 +200,6 @@ void read_dem(const char* path, bool whole_file, double lon_min, double lat_min,
   }
   sink(sink_context, window.ncols, window.nrows, lon_lat_h.data(), valid.data());
 }
-
 
 struct LayerFeatureReleaser {
   void operator()(void* feature) const { OGR_F_Destroy(feature); }
@@ -211,9 +242,7 @@ void collect_lines(OGRGeometryH geometry, std::vector<OGRGeometryH>& lines) {
 void read_lines(const char* path, owsim_line_sink sink, void* sink_context) {
   GDALAllRegister();
   CPLErrorReset();
-  const Dataset dataset(GDALOpenEx(path, GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr,
-                                   nullptr));
-  if (!dataset) throw std::runtime_error("GDAL/OGR cannot open it" + gdal_reason());
+  const Dataset dataset = open_confined(path, GDAL_OF_VECTOR, kLineDrivers, "power_lines");
   const Srs wgs84(OSRNewSpatialReference(nullptr));
   OSRImportFromEPSG(wgs84.get(), 4326);
   OSRSetAxisMappingStrategy(wgs84.get(), OAMS_TRADITIONAL_GIS_ORDER);
@@ -285,15 +314,32 @@ int guarded(char* error, std::size_t error_size, const Body& body) {
 
 extern "C" __attribute__((visibility("default"))) int owsim_dem_read(
     const char* path, int whole_file, double lon_min, double lat_min, double lon_max,
-    double lat_max, owsim_dem_sink sink, void* sink_context, char* error,
-    std::size_t error_size) {
+    double lat_max, owsim_dem_sink sink, void* sink_context, char* error, std::size_t error_size) {
   return guarded(error, error_size, [&] {
     read_dem(path, whole_file != 0, lon_min, lat_min, lon_max, lat_max, sink, sink_context);
   });
 }
 
-extern "C" __attribute__((visibility("default"))) int owsim_lines_read(
-    const char* path, owsim_line_sink sink, void* sink_context, char* error,
+extern "C" __attribute__((visibility("default"))) int owsim_dataset_files(
+    const char* path, int vector, owsim_file_sink sink, void* sink_context, char* error,
     std::size_t error_size) {
+  return guarded(error, error_size, [&] {
+    GDALAllRegister();
+    CPLErrorReset();
+    const Dataset dataset = vector != 0
+                                ? open_confined(path, GDAL_OF_VECTOR, kLineDrivers, "power_lines")
+                                : open_confined(path, GDAL_OF_RASTER, kDemDrivers, "terrain.dem");
+    char** files = GDALGetFileList(dataset.get());
+    for (char** file = files; file != nullptr && *file != nullptr; ++file)
+      sink(sink_context, *file);
+    CSLDestroy(files);
+  });
+}
+
+extern "C" __attribute__((visibility("default"))) int owsim_lines_read(const char* path,
+                                                                       owsim_line_sink sink,
+                                                                       void* sink_context,
+                                                                       char* error,
+                                                                       std::size_t error_size) {
   return guarded(error, error_size, [&] { read_lines(path, sink, sink_context); });
 }

@@ -6,13 +6,19 @@
 // Every mesh of the file is taken with its node's transformation applied (assimp's
 // PreTransformVertices), polygons split into triangles; the coordinates are the file's own (no
 // axis conversion: io/scenario/mesh_file.hpp says which axis is up).
-#include <assimp/Importer.hpp>
+#include <assimp/DefaultIOSystem.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <assimp/Importer.hpp>
 #include <cstdio>
+#include <cstring>
 #include <exception>
+#include <filesystem>
+#include <optional>
+#include <set>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include "io/scenario/mesh_module_abi.hpp"
@@ -31,6 +37,49 @@ std::string first_line(const char* text) {
   return line.empty() ? "unknown reason" : line;
 }
 
+// assimp's file access confined to the model file's folder tree (issue 33): a name that resolves
+// (symbolic links followed) elsewhere, or to anything but a regular file, is not opened — the read
+// then fails naming it. Every file opened is kept, so a run folder can copy the model with them.
+class ConfinedIOSystem : public Assimp::DefaultIOSystem {
+ public:
+  explicit ConfinedIOSystem(const std::filesystem::path& model) : model_(model) {
+    std::error_code error;
+    root_ =
+        std::filesystem::canonical(model.parent_path().empty() ? "." : model.parent_path(), error);
+  }
+
+  bool Exists(const char* file) const override { return allowed(file).has_value(); }
+
+  Assimp::IOStream* Open(const char* file, const char* mode) override {
+    const bool reading = std::strpbrk(mode, "wa+") == nullptr;
+    const std::optional<std::filesystem::path> path = allowed(file);
+    if (!reading || !path) {
+      if (refused_.empty()) refused_ = file;
+      return nullptr;
+    }
+    if (*path != std::filesystem::canonical(model_)) opened_.insert(path->string());
+    return DefaultIOSystem::Open(path->c_str(), mode);
+  }
+
+  [[nodiscard]] const std::string& refused() const { return refused_; }
+  [[nodiscard]] const std::set<std::string>& opened() const { return opened_; }
+
+ private:
+  std::optional<std::filesystem::path> allowed(const char* file) const {
+    std::error_code error;
+    const std::filesystem::path real = std::filesystem::canonical(file, error);
+    if (error || root_.empty() || !std::filesystem::is_regular_file(real, error)) return {};
+    const std::filesystem::path relative = real.lexically_relative(root_);
+    if (relative.empty() || *relative.begin() == "..") return {};
+    return real;
+  }
+
+  std::filesystem::path model_;
+  std::filesystem::path root_;
+  std::string refused_;
+  std::set<std::string> opened_;
+};
+
 }  // namespace
 
 extern "C" {
@@ -40,14 +89,23 @@ __attribute__((visibility("default"))) int owsim_mesh_module_abi(void) {
 }
 
 __attribute__((visibility("default"))) int owsim_mesh_read(const char* path, owsim_mesh_sink sink,
+                                                           owsim_mesh_file_sink file_sink,
                                                            void* sink_context, char* error,
                                                            std::size_t error_size) {
   try {
     Assimp::Importer importer;
+    auto* files = new ConfinedIOSystem(path);  // the importer owns it
+    importer.SetIOHandler(files);
     // Points and lines stay in the meshes and are skipped below: only triangles reach the sink.
     const aiScene* scene =
         importer.ReadFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
                                     aiProcess_PreTransformVertices);
+    if (!files->refused().empty()) {
+      copy_error("the mesh refers to " + files->refused() +
+                     ", which is not a regular file beside or below it; a mesh reads only those",
+                 error, error_size);
+      return 1;
+    }
     if (scene == nullptr) {
       copy_error("cannot read the mesh: " + first_line(importer.GetErrorString()), error,
                  error_size);
@@ -70,6 +128,7 @@ __attribute__((visibility("default"))) int owsim_mesh_read(const char* path, ows
       }
     }
     sink(sink_context, xyz.size() / 3, xyz.data(), corners.size() / 3, corners.data());
+    for (const std::string& file : files->opened()) file_sink(sink_context, file.c_str());
     return 0;
   } catch (const std::exception& e) {
     copy_error(std::string("cannot read the mesh: ") + e.what(), error, error_size);
