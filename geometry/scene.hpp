@@ -1,8 +1,9 @@
 #pragma once
 // The scene the engine traces (SENSOR-SPEC §6, DESIGN.md "Engine decisions"): conductors as
 // polylines sampled from their catenaries, poles and trees as vertical cylinders, buildings and
-// lattice towers as triangle meshes, and the terrain. Plain values in local ENU metres from the scenario origin; the scenario loader fills
-// it (geometry/span.hpp, geometry/forest.hpp), the engine only reads it.
+// lattice towers as triangle meshes, and the terrain. Plain values in local ENU metres from the
+// scenario origin; the scenario loader fills it (geometry/span.hpp, geometry/forest.hpp), the
+// engine only reads it.
 #include <Eigen/Core>
 #include <array>
 #include <cstddef>
@@ -92,13 +93,17 @@ struct Scene {
   std::vector<MeshObject> meshes;
   Terrain terrain;
   std::vector<FogVolume> fog;  // SENSOR-SPEC §10 media: not traced, met along each ray exactly
-  double fog_backscatter_ratio_sr = 0.0154;  // κ of SENSOR-SPEC §10 (key weather.backscatter_ratio_sr)
+  double fog_backscatter_ratio_sr =
+      0.0154;  // κ of SENSOR-SPEC §10 (key weather.backscatter_ratio_sr)
 };
 
 // How many objects the scene names before the terrain: conductors, cylinders and meshes.
 [[nodiscard]] inline std::size_t named_object_count(const Scene& scene) {
   return scene.conductors.size() + scene.cylinders.size() + scene.meshes.size();
 }
+
+// The ground's object id (points.csv's object column); no scene object may take it.
+inline constexpr std::string_view kTerrainId = "terrain";
 
 // The id of every object a return can belong to, by object index: conductors, then cylinders,
 // then meshes, then "terrain" (the order of sensor/pulse_candidates.hpp's object indices), then
@@ -109,7 +114,7 @@ struct Scene {
   for (const Conductor& conductor : scene.conductors) ids.push_back(conductor.id);
   for (const Cylinder& cylinder : scene.cylinders) ids.push_back(cylinder.id);
   for (const MeshObject& mesh : scene.meshes) ids.push_back(mesh.id);
-  ids.emplace_back("terrain");
+  ids.emplace_back(kTerrainId);
   for (const FogVolume& volume : scene.fog) ids.push_back(volume.id);
   return ids;
 }

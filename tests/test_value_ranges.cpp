@@ -101,6 +101,17 @@ TEST(ValueRanges, HostileNumbersAreRefusedAtTheirLineAndKey) {
        "s.yaml:8: scene.forest.count: must be in [0, 1000000], got 10000000"},
       {m + "scene:\n  poles:\n    - {id: p, at: {e: 1e7, n: 0}, height_m: 5, diameter_m: 1}\n",
        "s.yaml:9: scene.poles[0].at.e: must be in [-200000, 200000] m, got 10000000"},
+      // Issue 33: weather's numbers gave energies of 1e299 or NaN.
+      {m + "weather:\n  fog: [{id: f, visibility_m: 1e-300}]\n",
+       "s.yaml:8: weather.fog[0].visibility_m: must be in [1, 100000] m, got 1e-300"},
+      {m + "weather:\n  fog: [{id: f, visibility_m: 4.9e-324}]\n",
+       "s.yaml:8: weather.fog[0].visibility_m: must be in [1, 100000] m, got 4.94065646e-324"},
+      {m + "weather:\n  backscatter_ratio_sr: 1e308\n",
+       "s.yaml:8: weather.backscatter_ratio_sr: must be in [0, 1] sr^-1, got 1e+308"},
+      {m + "weather:\n  fog: [{id: f, visibility_m: 20, layer: {base_m: 0, top_m: 1e9}}]\n",
+       "s.yaml:8: weather.fog[0].layer.top_m: must be in [-1000, 10000] m, got 1000000000"},
+      {m + "weather:\n  fog: [{id: terrain, visibility_m: 20}]\n",
+       "s.yaml:8: weather.fog[0].id: 'terrain' is the ground's id (points.csv's object column)"},
   };
   for (const Case& c : cases) EXPECT_EQ(error_of(c.yaml), c.want) << c.yaml;
 }
@@ -146,6 +157,23 @@ TEST(ValueRanges, AScenarioBuiltInCodeIsHeldToTheSameTable) {
             "trajectory.waypoints.points[1].e: must be in [-200000, 200000] m, got 300000");
   EXPECT_EQ(error_of_built([](Scenario& s) { s.scan.prf_hz = 1e12; }),
             "sensor.prf_hz: must be in [1, 1000000] Hz, got 1e+12");
+  FogVolume fog;
+  fog.id = "f";
+  fog.visibility_m = 1e-300;
+  EXPECT_EQ(error_of_built([&](Scenario& s) { s.scene.fog = {fog}; }),
+            "weather.fog[0].visibility_m: must be in [1, 100000] m, got 1e-300");
+  EXPECT_EQ(error_of_built([](Scenario& s) { s.scene.fog_backscatter_ratio_sr = 1e308; }),
+            "weather.backscatter_ratio_sr: must be in [0, 1] sr^-1, got 1e+308");
+  fog.visibility_m = 20.0;
+  fog.id = "terrain";
+  EXPECT_EQ(error_of_built([&](Scenario& s) { s.scene.fog = {fog}; }),
+            "weather.fog[0].id: 'terrain' is the ground's id (points.csv's object column)");
+}
+
+TEST(ValueRanges, TooManyFogVolumesAreRefusedAtTheirLine) {
+  std::string yaml = std::string(kMinimal) + "weather:\n  fog:\n";
+  for (int i = 0; i < 33; ++i) yaml += "    - {id: f" + std::to_string(i) + ", visibility_m: 20}\n";
+  EXPECT_EQ(error_of(yaml), "s.yaml:8: weather.fog: at most 32 volumes, got 33");
 }
 
 }  // namespace

@@ -12,8 +12,8 @@
 #include "io/files/utf8_text.hpp"
 #include "io/scenario/value_ranges.hpp"
 #include "sensor/savitzky_golay.hpp"
-#include "sensor/weather.hpp"
 #include "sensor/scan_params_check.hpp"
+#include "sensor/weather.hpp"
 
 namespace owsim {
 namespace {
@@ -146,6 +146,9 @@ class IdCheck {
       throw input_error(key + ".id",
                         "'" + id + "': '/' is reserved for the ids owsim makes (\"<span>/<n>\")");
     }
+    if (id == kTerrainId) {
+      throw input_error(key + ".id", "'terrain' is the ground's id (points.csv's object column)");
+    }
     const auto [found, inserted] = first_.emplace(id, key);
     if (!inserted) {
       throw input_error(key + ".id",
@@ -247,10 +250,7 @@ void check_meshes(const std::vector<MeshObject>& meshes, IdCheck& ids) {
 }
 
 void check_fog(const SceneSpec& scene, IdCheck& ids) {
-  if (!(scene.fog_backscatter_ratio_sr >= 0.0 && std::isfinite(scene.fog_backscatter_ratio_sr))) {
-    throw input_error("weather.backscatter_ratio_sr",
-                      "must be a finite number ≥ 0, got " + number_text(scene.fog_backscatter_ratio_sr));
-  }
+  require_in_range(scene.fog_backscatter_ratio_sr, "weather.backscatter_ratio_sr");
   if (scene.fog.size() > kMaxFogVolumes) {
     throw input_error("weather.fog", "at most " + std::to_string(kMaxFogVolumes) +
                                          " volumes, got " + std::to_string(scene.fog.size()));
@@ -259,7 +259,7 @@ void check_fog(const SceneSpec& scene, IdCheck& ids) {
     const FogVolume& volume = scene.fog[i];
     const std::string key = indexed("weather.fog", i);
     ids.add(volume.id, key);
-    require_positive(volume.visibility_m, key + ".visibility_m");
+    require_in_range(volume.visibility_m, key + ".visibility_m");
     if (volume.shape == FogShape::layer &&
         !(std::isfinite(volume.base_m) && std::isfinite(volume.top_m) &&
           volume.top_m > volume.base_m)) {

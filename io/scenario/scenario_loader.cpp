@@ -22,6 +22,7 @@
 #include "io/scenario/yaml_reader.hpp"
 #include "sensor/range_counter.hpp"
 #include "sensor/scan_params_check.hpp"
+#include "sensor/weather.hpp"
 
 namespace owsim {
 namespace {
@@ -373,7 +374,12 @@ class ScenarioReader {
       }
     }
     if (const auto fog = map.get("fog")) {
-      for (const YamlValue& item : fog->items()) read_fog_volume(item);
+      const std::vector<YamlValue> volumes = fog->items();
+      if (volumes.size() > kMaxFogVolumes) {
+        fog->fail("at most " + std::to_string(kMaxFogVolumes) + " volumes, got " +
+                  std::to_string(volumes.size()));
+      }
+      for (const YamlValue& item : volumes) read_fog_volume(item);
     }
     map.finish();
   }
@@ -664,6 +670,7 @@ class ScenarioReader {
     if (id.find('/') != std::string::npos) {
       value.fail("'" + id + "': '/' is reserved for the ids owsim makes (\"<span>/<n>\")");
     }
+    if (id == kTerrainId) value.fail("'terrain' is the ground's id (points.csv's object column)");
     const auto [found, inserted] = ids_.emplace(id, value.line());
     if (!inserted) {
       value.fail("duplicate id '" + id + "' (first used at line " + std::to_string(found->second) +

@@ -75,6 +75,15 @@ constexpr std::array kRanges = {
     ValueRange{"scene.forest.height_m[]", 0.0, 200.0, "m"},
     ValueRange{"scene.forest.diameter_m[]", 0.001, 50.0, "m"},
     ValueRange{"scene.forest.reflectivity", 0.0, 1.0, ""},
+    // SENSOR-SPEC §10: κ of real fog lies near 0.02 sr⁻¹ (isotropic scattering: 1/4π); a fog's
+    // visibility from a metre (no flight) to 100 km (no fog).
+    ValueRange{"weather.backscatter_ratio_sr", 0.0, 1.0, "sr^-1"},
+    ValueRange{"weather.fog[].visibility_m", 1.0, 100'000.0, "m"},
+    ValueRange{"weather.fog[].layer.base_m", kLowestM, kHighestM, "m"},
+    ValueRange{"weather.fog[].layer.top_m", kLowestM, kHighestM, "m"},
+    ValueRange{"weather.fog[].box.e[]", -kFar, kFar, "m"},
+    ValueRange{"weather.fog[].box.n[]", -kFar, kFar, "m"},
+    ValueRange{"weather.fog[].box.u[]", kLowestM, kHighestM, "m"},
 };
 
 // Whole numbers below 1e10 digit by digit (a count of 1000000000, not 1e+09); others to 9 digits.
