@@ -117,7 +117,11 @@ void require_struct_size(const Options& options, const char* default_function) {
 owsim::SimulationOptions simulation_options(const owsim_simulation_options* options) {
   owsim::SimulationOptions out;
   if (options == nullptr) return out;
-  require_struct_size(*options, "owsim_simulation_options_default");
+  // flight_area_enu_m came later: a struct that ends before it is the earlier version.
+  constexpr std::size_t kWithoutArea = offsetof(owsim_simulation_options, flight_area_enu_m);
+  if (options->struct_size < kWithoutArea) {
+    require_struct_size(*options, "owsim_simulation_options_default");
+  }
   if (options->threads < 0) throw ArgumentError{"options->threads must be ≥ 0"};
   if (options->frames < 0) throw ArgumentError{"options->frames must be ≥ 0"};
   if (!(options->duration_s >= 0)) throw ArgumentError{"options->duration_s must be ≥ 0"};
@@ -126,6 +130,13 @@ owsim::SimulationOptions simulation_options(const owsim_simulation_options* opti
   if (options->duration_s > 0) out.duration_s = options->duration_s;
   if (options->override_seed != 0) out.seed = options->seed;
   out.no_noise = options->no_noise != 0;
+  if (options->struct_size >= sizeof(owsim_simulation_options)) {
+    const double* area = options->flight_area_enu_m;
+    if (area[0] != 0 || area[1] != 0 || area[2] != 0 || area[3] != 0) {
+      out.flight_area_enu_m =
+          Eigen::AlignedBox2d(Eigen::Vector2d(area[0], area[1]), Eigen::Vector2d(area[2], area[3]));
+    }
+  }
   return out;
 }
 

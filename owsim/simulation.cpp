@@ -87,8 +87,9 @@ Trajectory pushed_trajectory(const FlightSetup& setup, std::int64_t frame,
         !setup.area.contains(position.head<2>())) {
       throw input_error("poses[" + std::to_string(i) + "]",
                         "position (" + text_of(pose.e_m) + ", " + text_of(pose.n_m) +
-                            ") m lies outside the area the terrain was built for; give "
-                            "SimulationOptions::flight_area_enu_m");
+                            ") m lies outside the area the terrain was built for; give the "
+                            "simulation's flight_area_enu_m option (C++ SimulationOptions, C "
+                            "owsim_simulation_options)");
     }
     track.time_s.push_back(pose.time_s);
     track.position_enu_m.push_back(position);
@@ -201,9 +202,11 @@ SensorModel Simulation::model() const { return state_->setup.scenario.scan.model
 std::int64_t Simulation::frame_count() const { return state_->setup.frames; }
 int Simulation::pulses_per_frame() const { return state_->setup.scenario.scan.pulses_per_frame(); }
 double Simulation::frame_start_s(std::int64_t frame) const {
+  if (frame < 0) throw input_error("frame", "must be ≥ 0, got " + std::to_string(frame));
   return pulse_time_s(state_->setup.scenario.scan, frame, 0);
 }
 double Simulation::frame_end_s(std::int64_t frame) const {
+  if (frame < 0) throw input_error("frame", "must be ≥ 0, got " + std::to_string(frame));
   return pulse_time_s(state_->setup.scenario.scan, frame, pulses_per_frame() - 1);
 }
 const std::vector<std::string>& Simulation::object_ids() const {

@@ -5,6 +5,7 @@
 // line in this thread's last error, never a crash; a progress callback can stop a run.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -122,11 +123,11 @@ TEST(CApi, NullHandlesAndBadArgumentsGiveStatusCodes) {
   options.struct_size = 4;
   owsim_simulation* other = nullptr;
   EXPECT_EQ(owsim_simulation_open_with("x.yaml", &options, &other), OWSIM_ERROR_ARGUMENT);
-  EXPECT_NE(std::string(owsim_last_error())
-                .find("struct_size is 4, expected " +
-                      std::to_string(sizeof(owsim_simulation_options)) +
-                      " (start from owsim_simulation_options_default())"),
-            std::string::npos)
+  EXPECT_NE(
+      std::string(owsim_last_error())
+          .find("struct_size is 4, expected " + std::to_string(sizeof(owsim_simulation_options)) +
+                " (start from owsim_simulation_options_default())"),
+      std::string::npos)
       << owsim_last_error();
   owsim_run_options run = owsim_run_options_default();
   run.struct_size = 4;
@@ -155,6 +156,39 @@ TEST(CApi, BadScenariosAndFilesGiveOneLine) {
   EXPECT_EQ(message.find('\n'), std::string::npos);
   EXPECT_EQ(owsim_simulation_open_yaml("{[", nullptr, nullptr, &simulation), OWSIM_ERROR_INPUT);
   EXPECT_TRUE(std::string(owsim_last_error()).starts_with("scenario.yaml")) << owsim_last_error();
+}
+
+// Issue 33: a negative frame has no start (it was −0.33 s), and a host flying beyond the scenario's
+// area is told the C option that widens it, which then works.
+TEST(CApi, NegativeFramesAndTheFlightAreaOption) {
+  owsim_simulation* simulation = nullptr;
+  ASSERT_EQ(owsim_simulation_open((kExamples / "single_span.yaml").c_str(), &simulation), OWSIM_OK);
+  EXPECT_TRUE(std::isnan(owsim_simulation_frame_start_s(simulation, -1)));
+  EXPECT_STREQ(owsim_last_error(), "frame: must be ≥ 0, got -1");
+  EXPECT_TRUE(std::isnan(owsim_simulation_frame_end_s(simulation, -1)));
+  const double start = owsim_simulation_frame_start_s(simulation, 0);
+  const double end = owsim_simulation_frame_end_s(simulation, 0);
+  std::vector<owsim_pose> poses;  // level, east, 9 km from the scenario's span
+  for (double t = start - 0.05; t < end + 0.05; t += 0.01) {
+    poses.push_back({t, 9'000 + 40 * t, 0, 60, 0, 0, 90});
+  }
+  owsim_frame* frame = nullptr;
+  EXPECT_EQ(owsim_simulate_frame_poses(simulation, 0, poses.data(), poses.size(), &frame),
+            OWSIM_ERROR_INPUT);
+  EXPECT_NE(std::string(owsim_last_error()).find("C owsim_simulation_options"), std::string::npos)
+      << owsim_last_error();
+  owsim_simulation_release(simulation);
+
+  owsim_simulation_options options = owsim_simulation_options_default();
+  const double area[4] = {8'000, -1'000, 10'000, 1'000};
+  std::copy(std::begin(area), std::end(area), options.flight_area_enu_m);
+  ASSERT_EQ(
+      owsim_simulation_open_with((kExamples / "single_span.yaml").c_str(), &options, &simulation),
+      OWSIM_OK);
+  EXPECT_EQ(owsim_simulate_frame_poses(simulation, 0, poses.data(), poses.size(), &frame), OWSIM_OK)
+      << owsim_last_error();
+  owsim_frame_release(frame);
+  owsim_simulation_release(simulation);
 }
 
 TEST(CApi, PosesThatDoNotCoverTheFrameAreRefused) {

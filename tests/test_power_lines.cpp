@@ -38,8 +38,8 @@ class PowerLines : public ::testing::Test {
   CliResult run(const std::string& name, const std::string& scene) {
     const fs::path scenario = dir_ / (name + ".yaml");
     std::ofstream(scenario) << kHead << scene;
-    return run_cli({"run", scenario.string(), "--frames", "30", "--outputs", "d64,summary",
-                    "--out", (dir_ / name).string()},
+    return run_cli({"run", scenario.string(), "--frames", "30", "--outputs", "d64,summary", "--out",
+                    (dir_ / name).string()},
                    dir_.path());
   }
   void write(const std::string& file, const std::string& text) {
@@ -50,7 +50,8 @@ class PowerLines : public ::testing::Test {
 
 TEST_F(PowerLines, AGisLineFliesLikeTheSameSpansWrittenByHand) {
   std::string coordinates;
-  for (const char* tower : kTowers) coordinates += std::string(coordinates.empty() ? "" : ", ") + tower;
+  for (const char* tower : kTowers)
+    coordinates += std::string(coordinates.empty() ? "" : ", ") + tower;
   write("line.geojson",
         R"({"type": "FeatureCollection", "features": [{"type": "Feature",
             "properties": {"name": "ns", "lowest_point_m": 18},
@@ -67,8 +68,8 @@ TEST_F(PowerLines, AGisLineFliesLikeTheSameSpansWrittenByHand) {
   const auto at = [](const char* tower) {
     std::string t(tower);
     const auto comma = t.find(',');
-    return "{lat: " + t.substr(comma + 2, t.size() - comma - 3) + ", lon: " + t.substr(1, comma - 1) +
-           "}";
+    return "{lat: " + t.substr(comma + 2, t.size() - comma - 3) +
+           ", lon: " + t.substr(1, comma - 1) + "}";
   };
   for (std::size_t k = 0; k < std::size(kTowers); ++k) {
     if (k + 1 < std::size(kTowers)) {
@@ -107,10 +108,28 @@ TEST_F(PowerLines, BadLinesGiveOneLineAndNoOutput) {
   write("two.geojson", R"({"type": "FeatureCollection", "features": [{"type": "Feature",
       "properties": {}, "geometry": {"type": "LineString",
       "coordinates": [[10.8447, 48.6845], [10.8447, 48.6912]]}}]})");
+  // Issue 33: a CRS PROJ does not know was read as WGS-84; a name that is not UTF-8 gave
+  // nlohmann's internal message; a VRT names files anywhere.
+  write("unknown_crs.geojson", R"({"type": "FeatureCollection",
+      "crs": {"type": "name", "properties": {"name": "urn:ogc:def:crs:EPSG::999999"}},
+      "features": [{"type": "Feature", "properties": {}, "geometry": {"type": "LineString",
+      "coordinates": [[10.8447, 48.6845], [10.8447, 48.6912]]}}]})");
+  write("latin1.geojson",
+        "{\"type\": \"FeatureCollection\", \"features\": [{\"type\": "
+        "\"Feature\", \"properties\": {\"name\": \"Stra\xdfe\"}, \"geometry\": "
+        "{\"type\": \"LineString\", \"coordinates\": [[10.8447, 48.6845], "
+        "[10.8447, 48.6912]]}}]}");
+  write("lines.vrt",
+        R"(<OGRVRTDataSource><OGRVRTLayer name="x"><SrcDataSource>/etc/passwd</SrcDataSource>
+      </OGRVRTLayer></OGRVRTDataSource>)");
   const struct {
     std::string entry;
     std::string says;
   } cases[] = {{"{file: one.geojson}", "a line needs at least 2 towers, got 1"},
+               {"{file: unknown_crs.geojson}", "layer 0: its CRS cannot be read"},
+               {"{file: latin1.geojson}", "feature 0: property 'name' is not UTF-8 text"},
+               {"{file: lines.vrt}", "which power_lines does not accept"},
+               {"{file: 'http://127.0.0.1:9/lines.geojson'}", "a URL or a connection string"},
                {"{file: points.geojson}", "holds no LineString"},
                {"{file: missing.geojson}", "no such file: "},
                {"{file: named.geojson}", "property name must be non-empty and without '/'"},

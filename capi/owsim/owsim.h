@@ -88,6 +88,10 @@ typedef struct owsim_simulation_options {
   uint64_t seed;        /* replaces the scenario's seed when override_seed is nonzero */
   int32_t override_seed;
   int32_t no_noise; /* nonzero: range noise off (sigma = 0) */
+  /* Co-simulation over terrain: the east/north box {west, south, east, north} (m, local frame)
+   * the host may fly in besides the scenario's own flight; all 0: that flight's area only.
+   * Read only when struct_size covers it (clients built before it was added keep working). */
+  double flight_area_enu_m[4];
 } owsim_simulation_options;
 
 OWSIM_API owsim_simulation_options owsim_simulation_options_default(void);
@@ -113,7 +117,8 @@ OWSIM_API int64_t owsim_simulation_frame_count(const owsim_simulation* simulatio
 OWSIM_API int32_t owsim_simulation_pulses_per_frame(const owsim_simulation* simulation);
 /* 8 for MilOWS (64-bit words, flight.d64), 4 for HELLAS (flight.hellas); 0 for NULL. */
 OWSIM_API int32_t owsim_simulation_word_size(const owsim_simulation* simulation);
-/* When frame k's first / last pulse fires, seconds on the trajectory's clock; NaN for NULL. */
+/* When frame k's first / last pulse fires, seconds on the trajectory's clock; NaN for NULL or a
+ * negative k (owsim_last_error says which). */
 OWSIM_API double owsim_simulation_frame_start_s(const owsim_simulation* simulation, int64_t frame);
 OWSIM_API double owsim_simulation_frame_end_s(const owsim_simulation* simulation, int64_t frame);
 /* Objects a return can belong to (owsim_return.object indexes them); 0 for NULL. */

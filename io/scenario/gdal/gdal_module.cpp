@@ -43,6 +43,10 @@ std::string gdal_reason() {
   return message != nullptr && *message != '\0' ? std::string(": ") + message : std::string();
 }
 
+// Every failure GDAL reported during the current entry point (guarded() installs the handler), also
+// those it resets afterwards (a CRS it could not read, after which it falls back to a default).
+thread_local std::vector<std::string> g_failures;
+
 struct DatasetCloser {
   void operator()(void* dataset) const { GDALClose(dataset); }
 };
@@ -206,12 +210,24 @@ struct LayerFeatureReleaser {
 };
 using Feature = std::unique_ptr<void, LayerFeatureReleaser>;
 
-nlohmann::json properties_of(OGRFeatureH feature) {
+// `text` when it is UTF-8 (JSON carries nothing else); else a one-line refusal naming `what`.
+std::string utf8_text(const char* text, const std::string& what) {
+  std::string value = text != nullptr ? text : "";
+  try {
+    (void)nlohmann::json(value).dump();
+  } catch (const nlohmann::json::type_error&) {
+    throw std::runtime_error(what + " is not UTF-8 text");
+  }
+  return value;
+}
+
+nlohmann::json properties_of(OGRFeatureH feature, int index) {
   nlohmann::json properties = nlohmann::json::object();
+  const std::string where = "feature " + std::to_string(index);
   for (int i = 0; i < OGR_F_GetFieldCount(feature); ++i) {
     if (!OGR_F_IsFieldSetAndNotNull(feature, i)) continue;
     OGRFieldDefnH field = OGR_F_GetFieldDefnRef(feature, i);
-    const std::string name = OGR_Fld_GetNameRef(field);
+    const std::string name = utf8_text(OGR_Fld_GetNameRef(field), where + ": a property's name");
     switch (OGR_Fld_GetType(field)) {
       case OFTInteger:
       case OFTInteger64:
@@ -221,7 +237,8 @@ nlohmann::json properties_of(OGRFeatureH feature) {
         properties[name] = OGR_F_GetFieldAsDouble(feature, i);
         break;
       default:
-        properties[name] = OGR_F_GetFieldAsString(feature, i);
+        properties[name] =
+            utf8_text(OGR_F_GetFieldAsString(feature, i), where + ": property '" + name + "'");
     }
   }
   return properties;
@@ -250,8 +267,24 @@ void read_lines(const char* path, owsim_line_sink sink, void* sink_context) {
   for (int l = 0; l < GDALDatasetGetLayerCount(dataset.get()); ++l) {
     OGRLayerH layer = GDALDatasetGetLayer(dataset.get(), l);
     OGRSpatialReferenceH declared = OGR_L_GetSpatialRef(layer);
+    // A CRS GDAL failed to read (GeoJSON's crs member naming one PROJ does not know) leaves the
+    // layer in GDAL's default, WGS-84, after a failure it reported: refused, not guessed.
+    for (const std::string& failure : g_failures) {
+      if (failure.find("crs") != std::string::npos || failure.find("CRS") != std::string::npos) {
+        throw std::runtime_error("layer " + std::to_string(l) +
+                                 ": its CRS cannot be read: " + failure);
+      }
+    }
+    // GeoJSON without a crs member is WGS-84 (GDAL says so); a CRS GDAL cannot read, or a format
+    // that declares none (a shapefile without .prj), is refused rather than guessed.
+    if (declared == nullptr) {
+      throw std::runtime_error("layer " + std::to_string(l) +
+                               " declares no CRS that GDAL can read (GeoJSON: leave out the crs "
+                               "member for WGS-84)" +
+                               gdal_reason());
+    }
     Transform to_wgs;
-    if (declared != nullptr) {
+    {
       const Srs source(OSRClone(declared));
       OSRSetAxisMappingStrategy(source.get(), OAMS_TRADITIONAL_GIS_ORDER);
       to_wgs.reset(OCTNewCoordinateTransformation(source.get(), wgs84.get()));
@@ -271,7 +304,7 @@ void read_lines(const char* path, owsim_line_sink sink, void* sink_context) {
       }
       std::vector<OGRGeometryH> lines;
       collect_lines(geometry, lines);
-      const nlohmann::json properties = properties_of(feature.get());
+      const nlohmann::json properties = properties_of(feature.get(), index);
       for (OGRGeometryH line : lines) {
         nlohmann::json coordinates = nlohmann::json::array();
         for (int p = 0; p < OGR_G_GetPointCount(line); ++p) {
@@ -295,9 +328,14 @@ extern "C" __attribute__((visibility("default"))) int owsim_gdal_module_abi(void
 
 // Runs `body`, turning any exception into status 1 and a one-line message: nothing crosses the
 // C boundary.
+void CPL_STDCALL keep_failures(CPLErr level, CPLErrorNum, const char* message) {
+  if (level >= CE_Failure) g_failures.emplace_back(message != nullptr ? message : "");
+}
+
 template <typename Body>
 int guarded(char* error, std::size_t error_size, const Body& body) {
-  CPLPushErrorHandler(CPLQuietErrorHandler);
+  g_failures.clear();
+  CPLPushErrorHandler(keep_failures);
   int status = 0;
   try {
     body();
