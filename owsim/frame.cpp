@@ -3,6 +3,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <bit>
 
 #include "io/points/frame_points.hpp"
@@ -59,10 +60,13 @@ void Frame::encode(const ScanParams& scan, const GeodesyCells& geodesy) {
     hellas_words_.clear();
     milows_words_.resize(pulses);
   }
+  // The returns the sensor records: HELLAS's words hold the first alone (SENSOR-SPEC §8).
+  const int recorded = recorded_returns(model_);
   first_return_.resize(pulses + 1);
   first_return_[0] = 0;
   for (std::size_t k = 0; k < pulses; ++k) {
-    first_return_[k + 1] = first_return_[k] + static_cast<std::size_t>(result_.returns[k].count);
+    first_return_[k + 1] =
+        first_return_[k] + static_cast<std::size_t>(std::min(result_.returns[k].count, recorded));
   }
   returns_.resize(first_return_[pulses]);
 
@@ -80,9 +84,10 @@ void Frame::encode(const ScanParams& scan, const GeodesyCells& geodesy) {
     }
     GeodesyCells::Cursor cursor;
     for (std::size_t k = r.begin(); k != r.end(); ++k) {
-      for (int i = 0; i < result_.returns[k].count; ++i) {
+      const int count = std::min(result_.returns[k].count, recorded);
+      for (int i = 0; i < count; ++i) {
         returns_[first_return_[k] + static_cast<std::size_t>(i)] =
-            return_record(point_record(view, k, i, geodesy, cursor));
+            return_record(point_record(view, k, i, geodesy, cursor, recorded));
       }
     }
   });

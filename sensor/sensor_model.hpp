@@ -11,6 +11,11 @@ enum class SensorModel { milows, hellas };
 [[nodiscard]] constexpr std::string_view to_string(SensorModel model) {
   return model == SensorModel::milows ? "milows" : "hellas";
 }
+// The returns a pulse's word records (SENSOR-SPEC §8): MilOWS two (counter 1 and 2), HELLAS the
+// first only. Point outputs hold exactly these, like the words' decode.
+[[nodiscard]] constexpr int recorded_returns(SensorModel model) {
+  return model == SensorModel::milows ? 2 : 1;
+}
 [[nodiscard]] constexpr std::optional<SensorModel> parse_sensor_model(std::string_view text) {
   if (text == "milows") return SensorModel::milows;
   if (text == "hellas") return SensorModel::hellas;

@@ -72,14 +72,14 @@ MediumPath::MediumPath(const WeatherMedia& media, const PulseRay& ray, double en
     cuts[cut_count++] = interval->exit_m;
   }
   if (cut_count == 0) return;  // clear air all the way
-  if (cut_count == 2) {  // one volume on the path: one segment
+  if (cut_count == 2) {        // one volume on the path: one segment
     const auto v = static_cast<std::size_t>(
-        std::find(crossed.begin(), crossed.begin() + static_cast<std::ptrdiff_t>(media.volumes.size()),
-                  true) -
+        std::find(crossed.begin(),
+                  crossed.begin() + static_cast<std::ptrdiff_t>(media.volumes.size()), true) -
         crossed.begin());
     segments_[segment_count_++] =
         Segment{enter[v], exit[v], media.extinction_per_m[v], static_cast<std::uint32_t>(v)};
-    find_runs(media, receiver);
+    find_runs(media, receiver, end_m);
     return;
   }
   std::sort(cuts.begin(), cuts.begin() + static_cast<std::ptrdiff_t>(cut_count));
@@ -99,7 +99,7 @@ MediumPath::MediumPath(const WeatherMedia& media, const PulseRay& ray, double en
     }
     if (segment.extinction_per_m > 0.0) segments_[segment_count_++] = segment;
   }
-  find_runs(media, receiver);
+  find_runs(media, receiver, end_m);
 }
 
 double MediumPath::optical_depth(double range_m) const {
@@ -111,11 +111,12 @@ double MediumPath::optical_depth(double range_m) const {
   return depth;
 }
 
-void MediumPath::find_runs(const WeatherMedia& media, const ReceiverParams& receiver) {
+void MediumPath::find_runs(const WeatherMedia& media, const ReceiverParams& receiver,
+                           double end_m) {
   const double air_extinction = extinction_per_m(receiver.atmosphere);
   const double threshold = receiver.threshold;
-  double depth = 0.0;        // τ at the current segment's start
-  bool busy = false;         // the receiver is held by the last run up to the previous segment's end
+  double depth = 0.0;  // τ at the current segment's start
+  bool busy = false;   // the receiver is held by the last run up to the previous segment's end
   double previous_end = 0.0;
   VolumeRun* current = nullptr;  // the run holding the receiver (null when past kMaxVolumeRuns)
   for (std::size_t i = 0; i < segment_count_; ++i) {
@@ -139,11 +140,17 @@ void MediumPath::find_runs(const WeatherMedia& media, const ReceiverParams& rece
         }
       }
       const double above_until =
-          s.begin_m + (entry ? media.entry_busy_m[s.volume]
-                             : volume_busy_length_m(echo, threshold, s.extinction_per_m,
-                                                    air_extinction));
+          s.begin_m +
+          (entry ? media.entry_busy_m[s.volume]
+                 : volume_busy_length_m(echo, threshold, s.extinction_per_m, air_extinction));
       busy = above_until >= s.end_m;
-      if (current != nullptr) current->busy_end_m = std::min(above_until, s.end_m);
+      // The medium's own boundary ends the busy interval; the solid that ends the path does not:
+      // met while the echo is still above the threshold, it merges into the volume's return (no
+      // new leading edge) and is hidden with what lies inside the interval (SENSOR-SPEC §10).
+      const bool ends_at_solid = s.end_m >= end_m;
+      if (current != nullptr) {
+        current->busy_end_m = ends_at_solid ? above_until : std::min(above_until, s.end_m);
+      }
     } else {
       busy = false;
     }
@@ -160,9 +167,10 @@ std::size_t apply_weather(const WeatherMedia& media, const PulseRay& ray, double
   std::size_t kept = 0;
   for (std::size_t i = 0; i < count; ++i) {
     Candidate c = buffer[i];
-    const bool hidden = std::any_of(path.runs().begin(), path.runs().end(), [&](const VolumeRun& run) {
-      return c.range_m >= run.range_m && c.range_m < run.busy_end_m;
-    });
+    const bool hidden =
+        std::any_of(path.runs().begin(), path.runs().end(), [&](const VolumeRun& run) {
+          return c.range_m >= run.range_m && c.range_m < run.busy_end_m;
+        });
     if (hidden) continue;
     c.energy_rel *= fog_transmission(path.optical_depth(c.range_m));
     buffer[kept++] = c;

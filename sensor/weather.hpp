@@ -46,9 +46,9 @@ struct WeatherMedia {
   std::vector<double> extinction_per_m;
   double backscatter_ratio_sr = 0.0154;  // κ (key weather.backscatter_ratio_sr)
   std::uint32_t first_object = 0;
-  bool constant_air = true;            // T_atm does not depend on the range
-  std::vector<double> entry_echo;      // constant_air: the echo at an entry from clear air
-  std::vector<double> entry_busy_m;    // constant_air: how long that echo stays above threshold
+  bool constant_air = true;          // T_atm does not depend on the range
+  std::vector<double> entry_echo;    // constant_air: the echo at an entry from clear air
+  std::vector<double> entry_busy_m;  // constant_air: how long that echo stays above threshold
 
   WeatherMedia() = default;
   WeatherMedia(std::vector<FogVolume> fog, double backscatter_ratio_sr, std::uint32_t first_object,
@@ -67,7 +67,8 @@ struct VolumeRun {
   double busy_end_m;
   std::uint32_t object;
   [[nodiscard]] Candidate candidate() const {
-    return Candidate{range_m, energy_rel, 0.0, object, static_cast<std::uint8_t>(SurfaceClass::fog)};
+    return Candidate{range_m, energy_rel, 0.0, object,
+                     static_cast<std::uint8_t>(SurfaceClass::fog)};
   }
 };
 
@@ -93,7 +94,8 @@ class MediumPath {
     double extinction_per_m;
     std::uint32_t volume;
   };
-  void find_runs(const WeatherMedia& media, const ReceiverParams& receiver);
+  // `end_m`: where the path ends (the solid, or the timeout range).
+  void find_runs(const WeatherMedia& media, const ReceiverParams& receiver, double end_m);
   std::array<Segment, 2 * kMaxFogVolumes + 1> segments_;
   std::size_t segment_count_ = 0;
   std::array<VolumeRun, kMaxVolumeRuns> runs_;

@@ -140,7 +140,7 @@ class FrameEncodingTest : public ::testing::Test {
     std::vector<PointRecord> points;
     const GeodesyCells geodesy(local_frame_, utm_grid_of(kOrigin));
     for (const SyntheticFrame& frame : frames_) {
-      frame_points(frame.view(), geodesy, points);
+      frame_points(frame.view(), geodesy, points, recorded_returns(scan_.model));
       for (const PointRecord& point : points) {
         csv.write({&point, 1});
         las.write({&point, 1});

@@ -8,11 +8,10 @@
 // keys giving one line and no output.
 #include <gtest/gtest.h>
 
-#include <nlohmann/json.hpp>
-
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <numbers>
 #include <random>
 #include <string>
@@ -37,8 +36,8 @@ TEST(Weather, SpecNumbers) {
   const double smallest = 0.005 / (std::numbers::pi * 0.0154 * 0.75);
   EXPECT_NEAR(smallest, 0.1378, 5e-5);
   EXPECT_NEAR(volume_echo_energy(smallest, 0.0154, 0.75, 0.0, 1.0), 0.005, 1e-15);
-  EXPECT_NEAR(volume_echo_energy(0.2, 0.0154, 0.75, 0.0, 1.0), std::numbers::pi * 0.0154 * 0.2 * 0.75,
-              1e-15);
+  EXPECT_NEAR(volume_echo_energy(0.2, 0.0154, 0.75, 0.0, 1.0),
+              std::numbers::pi * 0.0154 * 0.2 * 0.75, 1e-15);
   // Behind D metres of medium a wire keeps exp(−2αD) of its energy.
   EXPECT_NEAR(fog_transmission(0.2 * 3.0), std::exp(-1.2), 1e-15);
   // Inside a volume the echo stays above the threshold for ln(e/thr) / (2α) past its entry.
@@ -94,7 +93,8 @@ TEST(FogVolume, PathsThroughLayersAndBoxes) {
       const double margin =
           volume.shape == FogShape::layer
               ? std::min(std::abs(p.z() - volume.base_m), std::abs(p.z() - volume.top_m))
-              : volume.box.exteriorDistance(p) + (in ? (volume.box.max() - p).cwiseMin(p - volume.box.min()).minCoeff() : 0.0);
+              : volume.box.exteriorDistance(p) +
+                    (in ? (volume.box.max() - p).cwiseMin(p - volume.box.min()).minCoeff() : 0.0);
       if (margin < 1e-6) continue;
       ASSERT_EQ(in, claimed) << "ray " << i << " t " << t;
     }
@@ -119,7 +119,8 @@ TEST(MediumPath, OpticalDepthIsTheIntegralOverOverlappingVolumes) {
       fog.push_back(volume);
     }
     const WeatherMedia media(fog, 0.0154, 10, ReceiverParams{});
-    const PulseRay ray{{u(rng), u(rng), u(rng)}, Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized()};
+    const PulseRay ray{{u(rng), u(rng), u(rng)},
+                       Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized()};
     const MediumPath path(media, ray, 300.0, ReceiverParams{});
     // Midpoint rule over 1 cm steps.
     double depth = 0.0;
@@ -151,16 +152,17 @@ TEST(MediumPath, TheBusyIntervalHidesWhatLiesInsideIt) {
   const double echo = volume_echo_energy(alpha, 0.0154, 0.75, 0.0, 0.95);
   const double busy_end = 100.0 + std::log(echo / 0.005) / (2.0 * alpha);
   std::array<Candidate, 8> buffer{};
-  buffer[0] = Candidate{50.0, 0.2, 0.0, 0, 0};              // in front of the bank
-  buffer[1] = Candidate{100.5, 0.2, 0.0, 1, 0};             // inside the busy interval
-  buffer[2] = Candidate{busy_end + 0.01, 0.2, 0.0, 2, 0};   // inside the bank, past it
-  buffer[3] = Candidate{110.0, 0.2, 0.0, 3, 0};             // behind the bank
+  buffer[0] = Candidate{50.0, 0.2, 0.0, 0, 0};             // in front of the bank
+  buffer[1] = Candidate{100.5, 0.2, 0.0, 1, 0};            // inside the busy interval
+  buffer[2] = Candidate{busy_end + 0.01, 0.2, 0.0, 2, 0};  // inside the bank, past it
+  buffer[3] = Candidate{110.0, 0.2, 0.0, 3, 0};            // behind the bank
   const std::size_t n = apply_weather(media, ray, 200.0, receiver, buffer, 4);
   ASSERT_EQ(n, 4u);
   EXPECT_EQ(buffer[0].object_index, 0u);
   EXPECT_EQ(buffer[0].energy_rel, 0.2);
   EXPECT_EQ(buffer[1].object_index, 2u);
-  EXPECT_NEAR(buffer[1].energy_rel, 0.2 * std::exp(-2.0 * alpha * (busy_end + 0.01 - 100.0)), 1e-15);
+  EXPECT_NEAR(buffer[1].energy_rel, 0.2 * std::exp(-2.0 * alpha * (busy_end + 0.01 - 100.0)),
+              1e-15);
   EXPECT_EQ(buffer[2].object_index, 3u);
   EXPECT_NEAR(buffer[2].energy_rel, 0.2 * std::exp(-2.0 * alpha * 4.0), 1e-15);
   EXPECT_EQ(buffer[3].object_index, 7u);  // the bank, the media's first object
@@ -169,6 +171,37 @@ TEST(MediumPath, TheBusyIntervalHidesWhatLiesInsideIt) {
   EXPECT_NEAR(buffer[3].energy_rel, echo, 1e-15);
   // The solid ends the path: a bank behind it adds nothing.
   EXPECT_EQ(apply_weather(media, ray, 80.0, receiver, buffer, 0), 0u);
+}
+
+// Issue 33: a solid met inside the busy interval (the ground 0.5 m into the bank) merges into the
+// volume's return — the echo never falls below the threshold — and is not a second return; one
+// met after the interval is.
+TEST(MediumPath, ASolidInsideTheBusyIntervalIsNotANewReturn) {
+  FogVolume bank;
+  bank.id = "bank";
+  bank.visibility_m = 15.0;  // busy ≈ 0.97 m past the entry at 100 m
+  bank.shape = FogShape::box;
+  bank.box = Eigen::AlignedBox3d(Eigen::Vector3d(-10, 100, -10), Eigen::Vector3d(10, 104, 10));
+  ReceiverParams receiver;
+  const WeatherMedia media({bank}, 0.0154, 7, receiver);
+  const PulseRay ray{Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitY()};
+  const double alpha = fog_extinction_per_m(15.0);
+  const double echo = volume_echo_energy(alpha, 0.0154, 0.75, 0.0, 0.95);
+  const double busy_end = 100.0 + std::log(echo / 0.005) / (2.0 * alpha);
+  ASSERT_GT(busy_end, 100.8);
+  for (const double solid_m : {100.5, 100.8, busy_end - 1e-6}) {
+    SCOPED_TRACE(solid_m);
+    std::array<Candidate, 8> buffer{};
+    buffer[0] = Candidate{solid_m, 0.3, 0.0, 1, 0};
+    ASSERT_EQ(apply_weather(media, ray, solid_m, receiver, buffer, 1), 1u);
+    EXPECT_EQ(buffer[0].object_index, 7u);  // the bank alone
+    EXPECT_DOUBLE_EQ(buffer[0].range_m, 100.0);
+  }
+  std::array<Candidate, 8> buffer{};
+  buffer[0] = Candidate{busy_end + 0.01, 0.3, 0.0, 1, 0};
+  ASSERT_EQ(apply_weather(media, ray, busy_end + 0.01, receiver, buffer, 1), 2u);
+  EXPECT_EQ(buffer[0].object_index, 1u);  // the solid, behind the interval
+  EXPECT_EQ(buffer[1].object_index, 7u);
 }
 
 const char* kLayerScenario = R"(name: layer
@@ -242,7 +275,8 @@ TEST_F(WeatherRuns, ALayerOfFogMatchesTheClosedForm) {
 // where MilOWS saw both.
 TEST_F(WeatherRuns, FogBankExampleMilowsSeesTheWireBehindHellasDoesNot) {
   std::ifstream example(fs::path(OWSIM_SOURCE_DIR) / "examples/fog_bank.yaml");
-  const std::string yaml((std::istreambuf_iterator<char>(example)), std::istreambuf_iterator<char>());
+  const std::string yaml((std::istreambuf_iterator<char>(example)),
+                         std::istreambuf_iterator<char>());
   std::string hellas = yaml;
   hellas.replace(hellas.find("model: milows"), 13, "model: hellas");
   const auto wires_by_return = [&](const std::string& name, const std::string& text,
@@ -253,17 +287,18 @@ TEST_F(WeatherRuns, FogBankExampleMilowsSeesTheWireBehindHellasDoesNot) {
                  "--outputs", "d64", "--out", (dir_ / name).string()},
                 dir_.path());
     EXPECT_EQ(result.exit_status, 0) << result.err;
-    const CliResult decoded = run_cli({"decode", (dir_ / name / words).string(), "--scenario",
-                                       (dir_ / (name + ".yaml")).string(), "--out",
-                                       (dir_ / (name + "_points")).string(), "--quiet"},
-                                      dir_.path());
+    const CliResult decoded = run_cli(
+        {"decode", (dir_ / name / words).string(), "--scenario", (dir_ / (name + ".yaml")).string(),
+         "--out", (dir_ / (name + "_points")).string(), "--quiet"},
+        dir_.path());
     EXPECT_EQ(decoded.exit_status, 0) << decoded.err;
     std::map<std::string, int> counts;
     std::ifstream points(dir_ / (name + "_points") / "points.csv");
     std::string line;
     while (std::getline(points, line)) {
       if (line.find(",wire,") == std::string::npos) continue;
-      const std::size_t comma = line.find(',', line.find(',', line.find(',', line.find(',') + 1) + 1) + 1);
+      const std::size_t comma =
+          line.find(',', line.find(',', line.find(',', line.find(',') + 1) + 1) + 1);
       counts[line.substr(comma + 1, 1)] += 1;  // the `return` column
     }
     return counts;
@@ -272,6 +307,46 @@ TEST_F(WeatherRuns, FogBankExampleMilowsSeesTheWireBehindHellasDoesNot) {
   EXPECT_GT(milows.count("2") ? milows.at("2") : 0, 100);
   const auto hellas_counts = wires_by_return("hellas", hellas, "flight.hellas");
   EXPECT_TRUE(hellas_counts.empty());
+}
+
+// Issue 33 (SENSOR-SPEC §8): a HELLAS run's points are what its words hold — the first return of
+// each pulse, as its decode gives them — not the second returns (the wire behind the fog) the
+// receiver found but the 32-bit word cannot carry.
+TEST_F(WeatherRuns, HellasPointsAreWhatItsWordsHold) {
+  std::ifstream example(fs::path(OWSIM_SOURCE_DIR) / "examples/fog_bank.yaml");
+  std::string yaml((std::istreambuf_iterator<char>(example)), std::istreambuf_iterator<char>());
+  yaml.replace(yaml.find("model: milows"), 13, "model: hellas");
+  std::ofstream(dir_ / "hellas.yaml") << yaml;
+  const CliResult result =
+      run_cli({"run", (dir_ / "hellas.yaml").string(), "--no-noise", "--frames", "12", "--outputs",
+               "d64,csv", "--out", (dir_ / "run").string()},
+              dir_.path());
+  ASSERT_EQ(result.exit_status, 0) << result.err;
+  const CliResult decoded =
+      run_cli({"decode", (dir_ / "run/flight.hellas").string(), "--scenario",
+               (dir_ / "hellas.yaml").string(), "--out", (dir_ / "decoded").string(), "--quiet"},
+              dir_.path());
+  ASSERT_EQ(decoded.exit_status, 0) << decoded.err;
+  // (frame, pulse, return) of every row.
+  const auto keys = [](const fs::path& file) {
+    std::vector<std::string> out;
+    std::ifstream points(file);
+    std::string line;
+    std::getline(points, line);  // header
+    while (std::getline(points, line)) {
+      std::size_t at = 0;
+      for (int comma = 0; comma < 2; ++comma) at = line.find(',', at) + 1;
+      const std::size_t fiber_end = line.find(',', line.find(',', at) + 1);
+      out.push_back(line.substr(0, at) + line.substr(fiber_end + 1, 1));
+    }
+    return out;
+  };
+  const std::vector<std::string> simulated = keys(dir_ / "run/points.csv");
+  EXPECT_GT(simulated.size(), 10'000u);
+  EXPECT_EQ(simulated, keys(dir_ / "decoded/points.csv"));
+  EXPECT_EQ(std::count_if(simulated.begin(), simulated.end(),
+                          [](const std::string& key) { return key.back() != '1'; }),
+            0);
 }
 
 TEST_F(WeatherRuns, BadWeatherGivesOneLineAndNoOutput) {
@@ -289,7 +364,8 @@ TEST_F(WeatherRuns, BadWeatherGivesOneLineAndNoOutput) {
   };
   for (const auto& bad : cases) {
     SCOPED_TRACE(bad.weather);
-    const CliResult result = run("bad", std::string(kLayerScenario) + "weather: " + bad.weather + "\n", "2");
+    const CliResult result =
+        run("bad", std::string(kLayerScenario) + "weather: " + bad.weather + "\n", "2");
     EXPECT_NE(result.exit_status, 0);
     EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
     EXPECT_NE(result.err.find(bad.says), std::string::npos) << result.err;
@@ -303,7 +379,8 @@ TEST_F(WeatherRuns, MergingFogIntoAnEmptySkyEqualsFlyingIt) {
   sky.replace(sky.find("terrain: {flat_u: 0}"), 20, "terrain: none");
   sky.erase(sky.find("  spans:"));
   const std::string fog =
-      sky + "weather:\n  fog:\n    - {id: deck, visibility_m: 20, layer: {base_m: 45, top_m: 46}}\n";
+      sky +
+      "weather:\n  fog:\n    - {id: deck, visibility_m: 20, layer: {base_m: 45, top_m: 46}}\n";
   ASSERT_EQ(run("sky", sky, "3").exit_status, 0);
   ASSERT_EQ(run("fog", fog, "3").exit_status, 0);
   const CliResult merged = run_cli(
@@ -319,11 +396,13 @@ TEST_F(WeatherRuns, MergingFogIntoAnEmptySkyEqualsFlyingIt) {
 // A weather key without volumes changes nothing: every output byte for byte the clear run's.
 TEST_F(WeatherRuns, WeatherWithoutVolumesChangesNoByte) {
   ASSERT_EQ(run("plain", kLayerScenario, "3").exit_status, 0);
-  ASSERT_EQ(run("empty", std::string(kLayerScenario) + "weather: {backscatter_ratio_sr: 0.03}\n", "3")
-                .exit_status,
-            0);
+  ASSERT_EQ(
+      run("empty", std::string(kLayerScenario) + "weather: {backscatter_ratio_sr: 0.03}\n", "3")
+          .exit_status,
+      0);
   for (const char* file : {"flight.d64", "points.csv", "points.ply"}) {
-    EXPECT_EQ(test::read_whole_file(dir_ / "plain" / file), test::read_whole_file(dir_ / "empty" / file))
+    EXPECT_EQ(test::read_whole_file(dir_ / "plain" / file),
+              test::read_whole_file(dir_ / "empty" / file))
         << file;
   }
 }

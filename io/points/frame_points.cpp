@@ -1,11 +1,13 @@
 #include "io/points/frame_points.hpp"
 
+#include <algorithm>
+
 #include "geometry/scene.hpp"  // SurfaceClass
 
 namespace owsim {
 
 PointRecord point_record(const FrameView& frame, std::size_t k, int r, const GeodesyCells& cells,
-                         GeodesyCells::Cursor& cursor) {
+                         GeodesyCells::Cursor& cursor, int recorded) {
   const PulseReturns& returns = frame.returns[k];
   const Pulse& pulse = frame.pulses[k];
   const PulseRay& ray = frame.rays[k];
@@ -16,7 +18,7 @@ PointRecord point_record(const FrameView& frame, std::size_t k, int r, const Geo
   point.line = pulse.line;
   point.fiber = pulse.fiber;
   point.return_number = r + 1;
-  point.number_of_returns = returns.count;
+  point.number_of_returns = std::min(returns.count, recorded);
   point.time_s = pulse.time_s;
   point.range_m = ret.range_m;
   point.counter = ret.counter;
@@ -32,13 +34,14 @@ PointRecord point_record(const FrameView& frame, std::size_t k, int r, const Geo
   return point;
 }
 
-void frame_points(const FrameView& frame, const GeodesyCells& cells,
-                  std::vector<PointRecord>& out) {
+void frame_points(const FrameView& frame, const GeodesyCells& cells, std::vector<PointRecord>& out,
+                  int recorded) {
   out.clear();
   GeodesyCells::Cursor cursor;
   for (std::size_t k = 0; k < frame.returns.size(); ++k) {
-    for (int r = 0; r < frame.returns[k].count; ++r) {
-      out.push_back(point_record(frame, k, r, cells, cursor));
+    const int count = std::min(frame.returns[k].count, recorded);
+    for (int r = 0; r < count; ++r) {
+      out.push_back(point_record(frame, k, r, cells, cursor, recorded));
     }
   }
 }

@@ -111,7 +111,7 @@ void FrameEncoder::finish_encoding(const FrameView& frame, const Pose& frame_sta
       out.hellas_header_word = hellas_file_header_word(frame.sweep, frame.pulses.front().time_s);
     }
     if (wants_points()) {
-      frame_points(frame, geodesy_, out.points);
+      frame_points(frame, geodesy_, out.points, recorded_returns(scan_.model));
       out.csv_rows.clear();
       if (csv_) csv_->encode(out.points, out.csv_rows);
       if (las_) las_->encode(out.points, out.las);
