@@ -17,6 +17,7 @@ packages=(
   libboost-dev                     # Clopper–Pearson intervals (Boost.Math beta quantiles, header-only; owsim pd/score)
   zlib1g-dev                       # the report page's data (owsim view, io/report/)
   chromium                         # the report page's browser test (tests/web/)
+  strace                           # scenarios open only their own files (tests/scenario_files_strace.py)
 )
 # Node.js and npm bundle the report page's script at build time (web/); Debian's packages unless
 # the machine already has a node and npm of its own.
