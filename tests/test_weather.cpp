@@ -137,69 +137,70 @@ TEST(MediumPath, OpticalDepthIsTheIntegralOverOverlappingVolumes) {
   }
 }
 
+// A 4 m fog bank (visibility 15 m, α = 0.2608) 100 m ahead along +n: its echo holds the receiver
+// for ln(e/0.005)/(2α) ≈ 0.97 m past the entry.
+struct BankAhead {
+  BankAhead() : media({volume()}, 0.0154, 7, receiver) {}
+  static FogVolume volume() {
+    FogVolume bank;
+    bank.id = "bank";
+    bank.visibility_m = 15.0;
+    bank.shape = FogShape::box;
+    bank.box = Eigen::AlignedBox3d(Eigen::Vector3d(-10, 100, -10), Eigen::Vector3d(10, 104, 10));
+    return bank;
+  }
+  ReceiverParams receiver;
+  WeatherMedia media;
+  PulseRay ray{Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitY()};
+  double alpha = fog_extinction_per_m(15.0);
+  double echo = volume_echo_energy(alpha, 0.0154, 0.75, 0.0, 0.95);
+  double busy_end = 100.0 + std::log(echo / 0.005) / (2.0 * alpha);
+};
+
 // A wire inside the interval a fog echo holds the receiver is not seen; one behind is, attenuated;
 // one in front is untouched.
 TEST(MediumPath, TheBusyIntervalHidesWhatLiesInsideIt) {
-  FogVolume bank;
-  bank.id = "bank";
-  bank.visibility_m = 15.0;  // α = 0.2608: busy for ln(e/0.005)/(2α) ≈ 0.97 m past the entry
-  bank.shape = FogShape::box;
-  bank.box = Eigen::AlignedBox3d(Eigen::Vector3d(-10, 100, -10), Eigen::Vector3d(10, 104, 10));
-  ReceiverParams receiver;
-  const WeatherMedia media({bank}, 0.0154, 7, receiver);
-  const PulseRay ray{Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitY()};
-  const double alpha = fog_extinction_per_m(15.0);
-  const double echo = volume_echo_energy(alpha, 0.0154, 0.75, 0.0, 0.95);
-  const double busy_end = 100.0 + std::log(echo / 0.005) / (2.0 * alpha);
+  const BankAhead bank;
   std::array<Candidate, 8> buffer{};
-  buffer[0] = Candidate{50.0, 0.2, 0.0, 0, 0};             // in front of the bank
-  buffer[1] = Candidate{100.5, 0.2, 0.0, 1, 0};            // inside the busy interval
-  buffer[2] = Candidate{busy_end + 0.01, 0.2, 0.0, 2, 0};  // inside the bank, past it
-  buffer[3] = Candidate{110.0, 0.2, 0.0, 3, 0};            // behind the bank
-  const std::size_t n = apply_weather(media, ray, 200.0, receiver, buffer, 4);
+  buffer[0] = Candidate{50.0, 0.2, 0.0, 0, 0};                  // in front of the bank
+  buffer[1] = Candidate{100.5, 0.2, 0.0, 1, 0};                 // inside the busy interval
+  buffer[2] = Candidate{bank.busy_end + 0.01, 0.2, 0.0, 2, 0};  // inside the bank, past it
+  buffer[3] = Candidate{110.0, 0.2, 0.0, 3, 0};                 // behind the bank
+  const std::size_t n = apply_weather(bank.media, bank.ray, 200.0, bank.receiver, buffer, 4);
   ASSERT_EQ(n, 4u);
   EXPECT_EQ(buffer[0].object_index, 0u);
   EXPECT_EQ(buffer[0].energy_rel, 0.2);
   EXPECT_EQ(buffer[1].object_index, 2u);
-  EXPECT_NEAR(buffer[1].energy_rel, 0.2 * std::exp(-2.0 * alpha * (busy_end + 0.01 - 100.0)),
-              1e-15);
+  EXPECT_NEAR(buffer[1].energy_rel,
+              0.2 * std::exp(-2.0 * bank.alpha * (bank.busy_end + 0.01 - 100.0)), 1e-15);
   EXPECT_EQ(buffer[2].object_index, 3u);
-  EXPECT_NEAR(buffer[2].energy_rel, 0.2 * std::exp(-2.0 * alpha * 4.0), 1e-15);
+  EXPECT_NEAR(buffer[2].energy_rel, 0.2 * std::exp(-2.0 * bank.alpha * 4.0), 1e-15);
   EXPECT_EQ(buffer[3].object_index, 7u);  // the bank, the media's first object
   EXPECT_EQ(buffer[3].surface, static_cast<std::uint8_t>(SurfaceClass::fog));
   EXPECT_DOUBLE_EQ(buffer[3].range_m, 100.0);
-  EXPECT_NEAR(buffer[3].energy_rel, echo, 1e-15);
+  EXPECT_NEAR(buffer[3].energy_rel, bank.echo, 1e-15);
   // The solid ends the path: a bank behind it adds nothing.
-  EXPECT_EQ(apply_weather(media, ray, 80.0, receiver, buffer, 0), 0u);
+  EXPECT_EQ(apply_weather(bank.media, bank.ray, 80.0, bank.receiver, buffer, 0), 0u);
 }
 
 // Issue 33: a solid met inside the busy interval (the ground 0.5 m into the bank) merges into the
 // volume's return — the echo never falls below the threshold — and is not a second return; one
 // met after the interval is.
 TEST(MediumPath, ASolidInsideTheBusyIntervalIsNotANewReturn) {
-  FogVolume bank;
-  bank.id = "bank";
-  bank.visibility_m = 15.0;  // busy ≈ 0.97 m past the entry at 100 m
-  bank.shape = FogShape::box;
-  bank.box = Eigen::AlignedBox3d(Eigen::Vector3d(-10, 100, -10), Eigen::Vector3d(10, 104, 10));
-  ReceiverParams receiver;
-  const WeatherMedia media({bank}, 0.0154, 7, receiver);
-  const PulseRay ray{Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitY()};
-  const double alpha = fog_extinction_per_m(15.0);
-  const double echo = volume_echo_energy(alpha, 0.0154, 0.75, 0.0, 0.95);
-  const double busy_end = 100.0 + std::log(echo / 0.005) / (2.0 * alpha);
-  ASSERT_GT(busy_end, 100.8);
-  for (const double solid_m : {100.5, 100.8, busy_end - 1e-6}) {
+  const BankAhead bank;
+  ASSERT_GT(bank.busy_end, 100.8);
+  for (const double solid_m : {100.5, 100.8, bank.busy_end - 1e-6}) {
     SCOPED_TRACE(solid_m);
     std::array<Candidate, 8> buffer{};
     buffer[0] = Candidate{solid_m, 0.3, 0.0, 1, 0};
-    ASSERT_EQ(apply_weather(media, ray, solid_m, receiver, buffer, 1), 1u);
+    ASSERT_EQ(apply_weather(bank.media, bank.ray, solid_m, bank.receiver, buffer, 1), 1u);
     EXPECT_EQ(buffer[0].object_index, 7u);  // the bank alone
     EXPECT_DOUBLE_EQ(buffer[0].range_m, 100.0);
   }
   std::array<Candidate, 8> buffer{};
-  buffer[0] = Candidate{busy_end + 0.01, 0.3, 0.0, 1, 0};
-  ASSERT_EQ(apply_weather(media, ray, busy_end + 0.01, receiver, buffer, 1), 2u);
+  buffer[0] = Candidate{bank.busy_end + 0.01, 0.3, 0.0, 1, 0};
+  ASSERT_EQ(apply_weather(bank.media, bank.ray, bank.busy_end + 0.01, bank.receiver, buffer, 1),
+            2u);
   EXPECT_EQ(buffer[0].object_index, 1u);  // the solid, behind the interval
   EXPECT_EQ(buffer[1].object_index, 7u);
 }
