@@ -42,10 +42,11 @@ std::string first_line(const char* text) {
 // then fails naming it. Every file opened is kept, so a run folder can copy the model with them.
 class ConfinedIOSystem : public Assimp::DefaultIOSystem {
  public:
-  explicit ConfinedIOSystem(const std::filesystem::path& model) : model_(model) {
+  explicit ConfinedIOSystem(const std::filesystem::path& model) {
     std::error_code error;
     root_ =
         std::filesystem::canonical(model.parent_path().empty() ? "." : model.parent_path(), error);
+    model_ = std::filesystem::canonical(model, error);  // empty when it cannot be resolved
   }
 
   bool Exists(const char* file) const override { return allowed(file).has_value(); }
@@ -57,7 +58,7 @@ class ConfinedIOSystem : public Assimp::DefaultIOSystem {
       if (refused_.empty()) refused_ = file;
       return nullptr;
     }
-    if (*path != std::filesystem::canonical(model_)) opened_.insert(path->string());
+    if (*path != model_) opened_.insert(path->string());  // no exception through assimp
     return DefaultIOSystem::Open(path->c_str(), mode);
   }
 
