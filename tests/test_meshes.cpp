@@ -253,6 +253,10 @@ TEST_F(Meshes, BadMeshesGiveOneLineAndNoOutput) {
   write("garbage.ply", "ply\nformat ascii 1.0\nelement vertex two\nend_header\n");
   write_hostile_meshes();
   fs::create_symlink("/dev/zero", dir_ / "zero.obj");
+  write("huge_faces.ply",
+        "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
+        "property float y\nproperty float z\nelement face 4000000000\n"
+        "property list uchar int vertex_indices\nend_header\n");
   const struct {
     std::string entry;
     std::string says;
@@ -269,6 +273,9 @@ TEST_F(Meshes, BadMeshesGiveOneLineAndNoOutput) {
       {"{id: m, file: zero.obj, at: {e: 0, n: 0}}", "outside the folder"},
       {"{id: m, file: mtl_device.obj, at: {e: 0, n: 0}}", "the mesh refers to"},
       {"{id: m, file: buffer_passwd.gltf, at: {e: 0, n: 0}}", "the mesh refers to"},
+      // A header claiming 4·10⁹ faces in a few hundred bytes ran out of memory in assimp.
+      {"{id: m, file: huge_faces.ply, at: {e: 0, n: 0}}",
+       "the PLY header claims 3 vertex, 4000000000 face, more than its 178 bytes can hold"},
   };
   for (const auto& bad : cases) {
     SCOPED_TRACE(bad.entry);

@@ -10,13 +10,17 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <algorithm>
 #include <assimp/Importer.hpp>
 #include <cstdio>
 #include <cstring>
 #include <exception>
 #include <filesystem>
+#include <fstream>
+#include <new>
 #include <optional>
 #include <set>
+#include <sstream>
 #include <string>
 #include <system_error>
 #include <vector>
@@ -81,6 +85,60 @@ class ConfinedIOSystem : public Assimp::DefaultIOSystem {
   std::set<std::string> opened_;
 };
 
+// A PLY header's element counts against the file's size, before assimp reserves them (a header
+// claiming 4·10⁹ faces in a 200-byte file ran out of memory): every element takes at least 2
+// bytes in ASCII (a digit and a line end) and its fixed-size properties' bytes in binary (a list
+// at least its count's size). Returns the problem, or "" when the counts can fit.
+std::string ply_counts_problem(const std::filesystem::path& path) {
+  std::ifstream file(path, std::ios::binary);
+  std::string line;
+  if (!std::getline(file, line) || line.rfind("ply", 0) != 0) return "";  // not a PLY
+  const auto property_bytes = [](const std::string& type) -> double {
+    if (type == "char" || type == "uchar" || type == "int8" || type == "uint8") return 1;
+    if (type == "short" || type == "ushort" || type == "int16" || type == "uint16") return 2;
+    if (type == "double" || type == "float64") return 8;
+    return 4;
+  };
+  bool ascii = true;
+  double least_bytes = 0.0;
+  double count = 0.0;
+  double element_bytes = 0.0;
+  std::string claims;
+  const auto close_element = [&] {
+    least_bytes += count * (ascii ? 2.0 : std::max(1.0, element_bytes));
+  };
+  for (int lines = 0; lines < 10'000 && std::getline(file, line); ++lines) {
+    std::istringstream words(line);
+    std::string keyword;
+    words >> keyword;
+    if (keyword == "format") {
+      std::string format;
+      words >> format;
+      ascii = format == "ascii";
+    } else if (keyword == "element") {
+      close_element();
+      std::string name;
+      words >> name >> count;
+      element_bytes = 0.0;
+      claims +=
+          (claims.empty() ? "" : ", ") + std::to_string(static_cast<long long>(count)) + " " + name;
+    } else if (keyword == "property") {
+      std::string type;
+      words >> type;
+      element_bytes +=
+          type == "list" ? (words >> type, property_bytes(type)) : property_bytes(type);
+    } else if (keyword == "end_header") {
+      break;
+    }
+  }
+  close_element();
+  std::error_code error;
+  const auto size = static_cast<double>(std::filesystem::file_size(path, error));
+  if (error || least_bytes <= size) return "";
+  return "the PLY header claims " + claims + ", more than its " +
+         std::to_string(static_cast<long long>(size)) + " bytes can hold";
+}
+
 }  // namespace
 
 extern "C" {
@@ -94,6 +152,10 @@ __attribute__((visibility("default"))) int owsim_mesh_read(const char* path, ows
                                                            void* sink_context, char* error,
                                                            std::size_t error_size) {
   try {
+    if (const std::string problem = ply_counts_problem(path); !problem.empty()) {
+      copy_error(problem, error, error_size);
+      return 1;
+    }
     Assimp::Importer importer;
     auto* files = new ConfinedIOSystem(path);  // the importer owns it
     importer.SetIOHandler(files);
@@ -131,6 +193,8 @@ __attribute__((visibility("default"))) int owsim_mesh_read(const char* path, ows
     sink(sink_context, xyz.size() / 3, xyz.data(), corners.size() / 3, corners.data());
     for (const std::string& file : files->opened()) file_sink(sink_context, file.c_str());
     return 0;
+  } catch (const std::bad_alloc&) {
+    copy_error("the mesh does not fit in memory", error, error_size);
   } catch (const std::exception& e) {
     copy_error(std::string("cannot read the mesh: ") + e.what(), error, error_size);
   } catch (...) {
