@@ -27,6 +27,10 @@ typedef int (*owsim_dem_read_fn)(const char* path, int whole_file, double lon_mi
                                  owsim_dem_sink sink, void* sink_context, char* error,
                                  std::size_t error_size);
 
+// The most towers (line vertices) owsim_lines_read takes from one file: a million-tower line ran
+// for 15 s into 2.8 GB before Embree failed.
+#define OWSIM_MAX_GIS_TOWERS 100000u
+
 // Receives one line of a vector file (called once per LineString, and per part of a
 // MultiLineString, in the file's order) as JSON text: {"feature": index in its layer,
 // "properties": {field: number or string, ...}, "coordinates": [[lon, lat], ...]} (WGS-84

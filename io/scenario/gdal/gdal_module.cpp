@@ -264,6 +264,7 @@ void read_lines(const char* path, owsim_line_sink sink, void* sink_context) {
   OSRImportFromEPSG(wgs84.get(), 4326);
   OSRSetAxisMappingStrategy(wgs84.get(), OAMS_TRADITIONAL_GIS_ORDER);
   int emitted = 0;
+  std::size_t towers = 0;
   for (int l = 0; l < GDALDatasetGetLayerCount(dataset.get()); ++l) {
     OGRLayerH layer = GDALDatasetGetLayer(dataset.get(), l);
     OGRSpatialReferenceH declared = OGR_L_GetSpatialRef(layer);
@@ -306,6 +307,12 @@ void read_lines(const char* path, owsim_line_sink sink, void* sink_context) {
       collect_lines(geometry, lines);
       const nlohmann::json properties = properties_of(feature.get(), index);
       for (OGRGeometryH line : lines) {
+        towers += static_cast<std::size_t>(std::max(0, OGR_G_GetPointCount(line)));
+        if (towers > OWSIM_MAX_GIS_TOWERS) {
+          throw std::runtime_error("holds more than " + std::to_string(OWSIM_MAX_GIS_TOWERS) +
+                                   " towers (line vertices), the most owsim builds from one file; "
+                                   "cut it to the flight's area");
+        }
         nlohmann::json coordinates = nlohmann::json::array();
         for (int p = 0; p < OGR_G_GetPointCount(line); ++p) {
           coordinates.push_back({OGR_G_GetX(line, p), OGR_G_GetY(line, p)});
