@@ -22,6 +22,12 @@
 namespace owsim {
 namespace {
 
+// A frame number a time can be asked of: frames start at 0.
+std::int64_t frame_number(std::int64_t frame) {
+  if (frame < 0) throw input_error("frame", "must be ≥ 0, got " + std::to_string(frame));
+  return frame;
+}
+
 using Clock = std::chrono::steady_clock;
 
 // The east/north positions of the recorded trajectory over the flight's time window (start_s,
@@ -202,12 +208,10 @@ SensorModel Simulation::model() const { return state_->setup.scenario.scan.model
 std::int64_t Simulation::frame_count() const { return state_->setup.frames; }
 int Simulation::pulses_per_frame() const { return state_->setup.scenario.scan.pulses_per_frame(); }
 double Simulation::frame_start_s(std::int64_t frame) const {
-  if (frame < 0) throw input_error("frame", "must be ≥ 0, got " + std::to_string(frame));
-  return pulse_time_s(state_->setup.scenario.scan, frame, 0);
+  return pulse_time_s(state_->setup.scenario.scan, frame_number(frame), 0);
 }
 double Simulation::frame_end_s(std::int64_t frame) const {
-  if (frame < 0) throw input_error("frame", "must be ≥ 0, got " + std::to_string(frame));
-  return pulse_time_s(state_->setup.scenario.scan, frame, pulses_per_frame() - 1);
+  return pulse_time_s(state_->setup.scenario.scan, frame_number(frame), pulses_per_frame() - 1);
 }
 const std::vector<std::string>& Simulation::object_ids() const {
   std::call_once(state_->ids_built, [&] { state_->ids = owsim::object_ids(state_->setup.scene); });

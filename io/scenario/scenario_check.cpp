@@ -140,14 +140,10 @@ void check_name(const std::string& name) {
 class IdCheck {
  public:
   void add(const std::string& id, const std::string& key) {
-    if (id.empty()) throw input_error(key + ".id", "an object needs a non-empty id");
+    if (id.empty()) throw input_error(key + ".id", object_id_problem(id));
     if (invalid_utf8_offset(id)) throw input_error(key + ".id", "not UTF-8 text");
-    if (id.find('/') != std::string::npos) {
-      throw input_error(key + ".id",
-                        "'" + id + "': '/' is reserved for the ids owsim makes (\"<span>/<n>\")");
-    }
-    if (id == kTerrainId) {
-      throw input_error(key + ".id", "'terrain' is the ground's id (points.csv's object column)");
+    if (const std::string problem = object_id_problem(id); !problem.empty()) {
+      throw input_error(key + ".id", problem);
     }
     const auto [found, inserted] = first_.emplace(id, key);
     if (!inserted) {
@@ -297,6 +293,15 @@ void check_scene(const Scenario& scenario) {
 }
 
 }  // namespace
+
+std::string object_id_problem(const std::string& id) {
+  if (id.empty()) return "an object needs a non-empty id";
+  if (id.find('/') != std::string::npos) {
+    return "'" + id + "': '/' is reserved for the ids owsim makes (\"<span>/<n>\")";
+  }
+  if (id == kTerrainId) return "'terrain' is the ground's id (points.csv's object column)";
+  return "";
+}
 
 void validate_scenario(const Scenario& scenario) {
   check_name(scenario.name);

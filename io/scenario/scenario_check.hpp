@@ -8,10 +8,16 @@
 // Throws owsim::Error "<key path>: <problem>" with the scenario file's key path
 // ("scene.poles[1].height_m: must be > 0, got -3"), as the loader's message after its
 // "<file>:<line>: "; Simulation::from_scenario puts the scenario's name in front.
+#include <string>
+
 #include "io/scenario/scenario.hpp"
 
 namespace owsim {
 
 void validate_scenario(const Scenario& scenario);
+
+// What is wrong with an object's id (empty, a '/', which owsim's own ids use, or the ground's
+// "terrain"), "" when nothing: the loader and validate_scenario say the same.
+[[nodiscard]] std::string object_id_problem(const std::string& id);
 
 }  // namespace owsim

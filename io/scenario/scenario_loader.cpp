@@ -18,6 +18,7 @@
 #include "io/scenario/gdal_module.hpp"
 #include "io/scenario/gis_lines.hpp"
 #include "io/scenario/mesh_file.hpp"
+#include "io/scenario/scenario_check.hpp"
 #include "io/scenario/value_ranges.hpp"
 #include "io/scenario/yaml_reader.hpp"
 #include "sensor/range_counter.hpp"
@@ -666,11 +667,7 @@ class ScenarioReader {
   std::string read_id(YamlMap& map) {
     const YamlValue value = map.require("id");
     std::string id = value.text();
-    if (id.empty()) value.fail("an object needs a non-empty id");
-    if (id.find('/') != std::string::npos) {
-      value.fail("'" + id + "': '/' is reserved for the ids owsim makes (\"<span>/<n>\")");
-    }
-    if (id == kTerrainId) value.fail("'terrain' is the ground's id (points.csv's object column)");
+    if (const std::string problem = object_id_problem(id); !problem.empty()) value.fail(problem);
     const auto [found, inserted] = ids_.emplace(id, value.line());
     if (!inserted) {
       value.fail("duplicate id '" + id + "' (first used at line " + std::to_string(found->second) +
