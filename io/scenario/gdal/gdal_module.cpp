@@ -43,9 +43,11 @@ std::string gdal_reason() {
   return message != nullptr && *message != '\0' ? std::string(": ") + message : std::string();
 }
 
-// Every failure GDAL reported during the current entry point (guarded() installs the handler), also
-// those it resets afterwards (a CRS it could not read, after which it falls back to a default).
-thread_local std::vector<std::string> g_failures;
+// Every failure GDAL reported during the current entry point (guarded() installs the handler with
+// the list as its user data), also those it resets afterwards (a CRS it could not read, after
+// which it falls back to a default). Not a thread_local: this is a dlopen'ed module, whose
+// dynamic TLS LeakSanitizer's tracer crashes on.
+using Failures = std::vector<std::string>;
 
 struct DatasetCloser {
   void operator()(void* dataset) const { GDALClose(dataset); }
@@ -256,7 +258,8 @@ void collect_lines(OGRGeometryH geometry, std::vector<OGRGeometryH>& lines) {
   }
 }
 
-void read_lines(const char* path, owsim_line_sink sink, void* sink_context) {
+void read_lines(const char* path, owsim_line_sink sink, void* sink_context,
+                const Failures& failures) {
   GDALAllRegister();
   CPLErrorReset();
   const Dataset dataset = open_confined(path, GDAL_OF_VECTOR, kLineDrivers, "power_lines");
@@ -270,7 +273,7 @@ void read_lines(const char* path, owsim_line_sink sink, void* sink_context) {
     OGRSpatialReferenceH declared = OGR_L_GetSpatialRef(layer);
     // A CRS GDAL failed to read (GeoJSON's crs member naming one PROJ does not know) leaves the
     // layer in GDAL's default, WGS-84, after a failure it reported: refused, not guessed.
-    for (const std::string& failure : g_failures) {
+    for (const std::string& failure : failures) {
       if (failure.find("crs") != std::string::npos || failure.find("CRS") != std::string::npos) {
         throw std::runtime_error("layer " + std::to_string(l) +
                                  ": its CRS cannot be read: " + failure);
@@ -333,19 +336,22 @@ extern "C" __attribute__((visibility("default"))) int owsim_gdal_module_abi(void
   return OWSIM_GDAL_MODULE_ABI;
 }
 
-// Runs `body`, turning any exception into status 1 and a one-line message: nothing crosses the
-// C boundary.
 void CPL_STDCALL keep_failures(CPLErr level, CPLErrorNum, const char* message) {
-  if (level >= CE_Failure) g_failures.emplace_back(message != nullptr ? message : "");
+  auto* failures = static_cast<Failures*>(CPLGetErrorHandlerUserData());
+  if (level >= CE_Failure && failures != nullptr) {
+    failures->emplace_back(message != nullptr ? message : "");
+  }
 }
 
+// Runs `body(failures)`, turning any exception into status 1 and a one-line message: nothing
+// crosses the C boundary.
 template <typename Body>
 int guarded(char* error, std::size_t error_size, const Body& body) {
-  g_failures.clear();
-  CPLPushErrorHandler(keep_failures);
+  Failures failures;
+  CPLPushErrorHandlerEx(keep_failures, &failures);
   int status = 0;
   try {
-    body();
+    body(failures);
   } catch (const std::exception& failure) {
     copy_error(failure.what(), error, error_size);
     status = 1;
@@ -360,7 +366,7 @@ int guarded(char* error, std::size_t error_size, const Body& body) {
 extern "C" __attribute__((visibility("default"))) int owsim_dem_read(
     const char* path, int whole_file, double lon_min, double lat_min, double lon_max,
     double lat_max, owsim_dem_sink sink, void* sink_context, char* error, std::size_t error_size) {
-  return guarded(error, error_size, [&] {
+  return guarded(error, error_size, [&](const Failures&) {
     read_dem(path, whole_file != 0, lon_min, lat_min, lon_max, lat_max, sink, sink_context);
   });
 }
@@ -368,7 +374,7 @@ extern "C" __attribute__((visibility("default"))) int owsim_dem_read(
 extern "C" __attribute__((visibility("default"))) int owsim_dataset_files(
     const char* path, int vector, owsim_file_sink sink, void* sink_context, char* error,
     std::size_t error_size) {
-  return guarded(error, error_size, [&] {
+  return guarded(error, error_size, [&](const Failures&) {
     GDALAllRegister();
     CPLErrorReset();
     const Dataset dataset = vector != 0
@@ -386,5 +392,6 @@ extern "C" __attribute__((visibility("default"))) int owsim_lines_read(const cha
                                                                        void* sink_context,
                                                                        char* error,
                                                                        std::size_t error_size) {
-  return guarded(error, error_size, [&] { read_lines(path, sink, sink_context); });
+  return guarded(error, error_size,
+                 [&](const Failures& failures) { read_lines(path, sink, sink_context, failures); });
 }
