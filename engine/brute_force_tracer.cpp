@@ -41,7 +41,7 @@ void BruteForceTracer::trace(const PulseRay& ray, PulseCandidates& out) const {
                             receiver_);
     });
   }
-  triangles_in_front(*terrain_mesh_, [&](const TriangleHit& hit) {
+  triangles_in_front(terrain_mesh_, [&](const TriangleHit& hit) {
     return ground_candidate(ray, hit.t, hit.normal, scene.terrain.reflectivity,
                             ground_object_index(scene), receiver_);
   });

@@ -5,6 +5,7 @@
 // pulse for pulse; tests hold them to that, and benchmarks measure what the BVH buys.
 #include <cstdint>
 #include <span>
+#include <utility>
 
 #include "geometry/scene.hpp"
 #include "geometry/terrain.hpp"
@@ -15,10 +16,9 @@ namespace owsim {
 
 class BruteForceTracer {
  public:
-  // `terrain_mesh` is the mesh the Embree scene was built from (EmbreeScene::terrain_mesh()).
-  BruteForceTracer(const Scene& scene, const TriangleMesh& terrain_mesh,
-                   const ReceiverParams& receiver)
-      : scene_(&scene), terrain_mesh_(&terrain_mesh), receiver_(receiver) {}
+  // `terrain_mesh` is the surface the Embree scene traces (EmbreeScene::terrain_mesh()).
+  BruteForceTracer(const Scene& scene, TriangleMesh terrain_mesh, const ReceiverParams& receiver)
+      : scene_(&scene), terrain_mesh_(std::move(terrain_mesh)), receiver_(receiver) {}
 
   // One pulse: fills `out` (cleared first).
   void trace(const PulseRay& ray, PulseCandidates& out) const;
@@ -29,7 +29,7 @@ class BruteForceTracer {
 
  private:
   const Scene* scene_;
-  const TriangleMesh* terrain_mesh_;
+  TriangleMesh terrain_mesh_;
   ReceiverParams receiver_;
 };
 

@@ -6,6 +6,7 @@
 
 #include "engine/trace_context.hpp"
 #include "geometry/error.hpp"
+#include "geometry/ray_triangle.hpp"
 #include "sensor/beam.hpp"
 
 namespace owsim {
@@ -113,7 +114,7 @@ RTCScene new_scene(const EmbreeDevice& device) {
 EmbreeScene::EmbreeScene(const EmbreeDevice& device, const Scene& scene,
                          const ReceiverParams& receiver, const Eigen::AlignedBox2d& region,
                          double max_range_m)
-    : objects_(&scene), receiver_(receiver), max_range_m_(max_range_m) {
+    : objects_(&scene), receiver_(receiver), max_range_m_(max_range_m), region_(region) {
   if (!(std::isfinite(max_range_m) && max_range_m > 0.0)) {
     throw Error("engine: the maximum range must be positive and finite");
   }
@@ -131,10 +132,7 @@ EmbreeScene::EmbreeScene(const EmbreeDevice& device, const Scene& scene,
     }
   }
   if (!scene.cylinders.empty()) attach_cylinders(device);
-  terrain_mesh_ = scene.terrain.mesh(region);
-  if (!terrain_mesh_.triangles.empty()) {
-    terrain_geom_ = attach_triangles(device, terrain_mesh_, "adding the terrain");
-  }
+  attach_terrain(device);
   rtcCommitScene(solids_);
   rtcCommitScene(wires_);
   device.check("building the scene");
@@ -211,6 +209,36 @@ void EmbreeScene::attach_cylinders(const EmbreeDevice& device) {
   device.check("adding poles and trees");
 }
 
+void EmbreeScene::attach_terrain(const EmbreeDevice& device) {
+  const Terrain& terrain = scene().terrain;
+  if (terrain.kind == TerrainKind::dem) {
+    terrain_grids_.emplace(*terrain.dem, region_);
+    if (terrain_grids_->grid_count() > 0) {
+      RTCGeometry geometry = terrain_grids_->grid_geometry(device.get());
+      terrain_geom_ = rtcAttachGeometry(solids_, geometry);
+      rtcReleaseGeometry(geometry);
+      device.check("adding the terrain");
+    }
+    if (!terrain_grids_->patches().triangles.empty()) {
+      terrain_patches_geom_ =
+          attach_triangles(device, terrain_grids_->patches(), "adding the terrain");
+    }
+    return;
+  }
+  terrain_triangles_ = terrain.mesh(region_);
+  if (!terrain_triangles_.triangles.empty()) {
+    terrain_geom_ = attach_triangles(device, terrain_triangles_, "adding the terrain");
+  }
+}
+
+TriangleHit EmbreeScene::terrain_hit(const RTCHit& hit, const PulseRay& ray) const {
+  if (hit.geomID == terrain_patches_geom_) {
+    return exact_mesh_hit(terrain_grids_->patches(), hit.primID, ray.origin_enu_m, ray.dir_enu);
+  }
+  if (terrain_grids_) return terrain_grids_->exact_grid_hit(hit.primID, hit.u, hit.v, ray);
+  return exact_mesh_hit(terrain_triangles_, hit.primID, ray.origin_enu_m, ray.dir_enu);
+}
+
 unsigned EmbreeScene::attach_triangles(const EmbreeDevice& device, const TriangleMesh& mesh,
                                        const char* what) {
   RTCGeometry geometry = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
@@ -222,9 +250,9 @@ unsigned EmbreeScene::attach_triangles(const EmbreeDevice& device, const Triangl
       vertices[3 * v + static_cast<std::size_t>(axis)] = static_cast<float>(mesh.vertices[v][axis]);
     }
   }
-  auto* triangles = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-      geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
-      mesh.triangles.size()));
+  auto* triangles = static_cast<unsigned*>(
+      rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                              3 * sizeof(unsigned), mesh.triangles.size()));
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
     for (std::size_t corner = 0; corner < 3; ++corner) {
       triangles[3 * t + corner] = mesh.triangles[t][corner];

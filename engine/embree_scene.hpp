@@ -4,8 +4,9 @@
 //   solids  — what stops the central ray:
 //     meshes     — one triangle geometry per mesh object (buildings, lattice towers);
 //     cylinders  — one USER geometry (poles and trees), intersected in double precision;
-//     terrain    — one triangle mesh over the region the sensor can reach;
-//     a triangle hit is re-intersected in double (engine/frame_tracer.cpp);
+//     terrain    — over the region the sensor can reach: a DEM as grid primitives on its posts
+//                  (engine/terrain_grids.hpp), a flat plane or height grid as one triangle mesh;
+//     a triangle or grid hit is re-intersected in double (engine/frame_tracer.cpp);
 //   wires   — every conductor's segments in one FLAT_LINEAR_CURVE geometry (one Embree object
 //             and vertex buffer however many conductors: 35,000 geometries cost a 5,000-span
 //             grid 20 MB), its radius the *capture radius* r_wire + r_beam(max range) of the
@@ -23,9 +24,11 @@
 #include <embree3/rtcore.h>
 
 #include <Eigen/Geometry>
+#include <optional>
 #include <vector>
 
 #include "engine/embree_device.hpp"
+#include "engine/terrain_grids.hpp"
 #include "geometry/scene.hpp"
 #include "sensor/pulse_candidates.hpp"
 #include "sensor/receiver.hpp"
@@ -53,7 +56,12 @@ class EmbreeScene {
   [[nodiscard]] RTCScene wires() const { return wires_; }    // conductors
   [[nodiscard]] const Scene& scene() const { return *objects_; }
   [[nodiscard]] const ReceiverParams& receiver() const { return receiver_; }
-  [[nodiscard]] const TriangleMesh& terrain_mesh() const { return terrain_mesh_; }
+  // The terrain's triangles over the region, built on each call (the brute-force tracer's and
+  // tests' view of the surface the Embree scene traces).
+  [[nodiscard]] TriangleMesh terrain_mesh() const { return scene().terrain.mesh(region_); }
+  // The pulse's exact range and normal on the terrain where Embree reported `hit` (on one of
+  // the terrain's geometries).
+  [[nodiscard]] TriangleHit terrain_hit(const RTCHit& hit, const PulseRay& ray) const;
   [[nodiscard]] const WireSegments& wire_segments() const { return wire_segments_; }
   // r_wire + r_beam(max range), widened by the float-safety margin.
   [[nodiscard]] double capture_radius_m(const Conductor& conductor) const;
@@ -63,25 +71,39 @@ class EmbreeScene {
 
   // Geometry ids: wires() holds geometry 0 (when there are conductors); in solids(), mesh m is
   // geomID m, then
-  // come the cylinders and the terrain (RTC_INVALID_GEOMETRY_ID when absent).
+  // come the cylinders and the terrain's one or two geometries (RTC_INVALID_GEOMETRY_ID when
+  // absent).
   [[nodiscard]] unsigned cylinders_geom_id() const { return cylinders_geom_; }
   [[nodiscard]] unsigned terrain_geom_id() const { return terrain_geom_; }
+  // A DEM's tiles with holes, as triangles (engine/terrain_grids.hpp).
+  [[nodiscard]] unsigned terrain_patches_geom_id() const { return terrain_patches_geom_; }
+  [[nodiscard]] bool has_terrain() const {
+    return terrain_geom_ != RTC_INVALID_GEOMETRY_ID ||
+           terrain_patches_geom_ != RTC_INVALID_GEOMETRY_ID;
+  }
+  [[nodiscard]] bool is_terrain(unsigned geom_id) const {
+    return geom_id != RTC_INVALID_GEOMETRY_ID &&
+           (geom_id == terrain_geom_ || geom_id == terrain_patches_geom_);
+  }
 
  private:
   void attach_conductors(const EmbreeDevice& device);
   void attach_cylinders(const EmbreeDevice& device);
-  unsigned attach_triangles(const EmbreeDevice& device, const TriangleMesh& mesh,
-                            const char* what);
+  unsigned attach_triangles(const EmbreeDevice& device, const TriangleMesh& mesh, const char* what);
+  void attach_terrain(const EmbreeDevice& device);
 
   const Scene* objects_;
   ReceiverParams receiver_;
   double max_range_m_;
-  TriangleMesh terrain_mesh_;
+  Eigen::AlignedBox2d region_;
+  TriangleMesh terrain_triangles_;             // a flat or grid terrain
+  std::optional<TerrainGrids> terrain_grids_;  // a DEM
   WireSegments wire_segments_;
   RTCScene solids_ = nullptr;
   RTCScene wires_ = nullptr;
   unsigned cylinders_geom_ = RTC_INVALID_GEOMETRY_ID;
   unsigned terrain_geom_ = RTC_INVALID_GEOMETRY_ID;
+  unsigned terrain_patches_geom_ = RTC_INVALID_GEOMETRY_ID;
 };
 
 }  // namespace owsim

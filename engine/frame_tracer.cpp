@@ -33,33 +33,16 @@ void set_ray(RTCRay& ray, const PulseRay& pulse, unsigned id, float tfar) {
   ray.flags = 0;
 }
 
-// The range and normal of the pulse's ray on triangle `prim_id` of `mesh`, in double. Float
-// rounding may put the float ray on this triangle while the double ray passes just over its edge
-// into the neighbour: then the range comes from this triangle's plane, still in double (Embree's
-// float t would be off by the float rounding of origin and direction, millimetres at grazing
-// incidence).
-TriangleHit exact_triangle_hit(const TriangleMesh& mesh, unsigned prim_id, const PulseRay& ray) {
-  const auto& triangle = mesh.triangles[prim_id];
-  const Eigen::Vector3d& v0 = mesh.vertices[triangle[0]];
-  const Eigen::Vector3d& v1 = mesh.vertices[triangle[1]];
-  const Eigen::Vector3d& v2 = mesh.vertices[triangle[2]];
-  if (const auto exact = intersect_triangle(ray.origin_enu_m, ray.dir_enu, v0, v1, v2, 0.0,
-                                            std::numeric_limits<double>::infinity())) {
-    return *exact;
-  }
-  const Eigen::Vector3d normal = (v1 - v0).cross(v2 - v0).normalized();
-  return {normal.dot(v0 - ray.origin_enu_m) / normal.dot(ray.dir_enu), normal};
-}
-
 // The nearest solid hit Embree reported, turned into the pulse's solid candidate in double.
-void record_solid(const EmbreeScene& scene, const PulseRay& ray, unsigned geom_id, unsigned prim_id,
+void record_solid(const EmbreeScene& scene, const PulseRay& ray, const RTCHit& solid,
                   const CylinderRecord& cylinder, PulseCandidates& out) {
+  const unsigned geom_id = solid.geomID, prim_id = solid.primID;
   if (geom_id == kNoHit) return;
   const Scene& objects = scene.scene();
   const ReceiverParams& receiver = scene.receiver();
   if (geom_id < objects.meshes.size()) {
     const MeshObject& mesh = objects.meshes[geom_id];
-    const TriangleHit hit = exact_triangle_hit(mesh.mesh, prim_id, ray);
+    const TriangleHit hit = exact_mesh_hit(mesh.mesh, prim_id, ray.origin_enu_m, ray.dir_enu);
     out.set_solid(mesh_candidate(ray, hit.t, hit.normal, mesh, mesh_object_index(objects, geom_id),
                                  receiver));
     return;
@@ -70,8 +53,8 @@ void record_solid(const EmbreeScene& scene, const PulseRay& ray, unsigned geom_i
                                      cylinder_object_index(objects, prim_id), receiver));
     return;
   }
-  if (geom_id == scene.terrain_geom_id()) {
-    const TriangleHit hit = exact_triangle_hit(scene.terrain_mesh(), prim_id, ray);
+  if (scene.is_terrain(geom_id)) {
+    const TriangleHit hit = scene.terrain_hit(solid, ray);
     out.set_solid(ground_candidate(ray, hit.t, hit.normal, objects.terrain.reflectivity,
                                    ground_object_index(objects), receiver));
   }
@@ -117,6 +100,8 @@ void intersect_block(TraceApi api, RTCScene scene, TraceContext& context, RTCRay
           RTCRayHit& target = rayhits[first + lane];
           target.hit.geomID = packet.hit.geomID[lane];
           target.hit.primID = packet.hit.primID[lane];
+          target.hit.u = packet.hit.u[lane];
+          target.hit.v = packet.hit.v[lane];
         }
       }
       break;
@@ -189,8 +174,7 @@ void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const st
     for (unsigned i = 0; i < n; ++i) {
       const RTCRayHit& rayhit = rayhits[i];
       const unsigned id = rayhit.ray.id;
-      record_solid(*scene_, rays[id], rayhit.hit.geomID, rayhit.hit.primID,
-                   cylinder_hits[id - block], candidates[id]);
+      record_solid(*scene_, rays[id], rayhit.hit, cylinder_hits[id - block], candidates[id]);
     }
 
     // Pass 2: the wires in front of it. The filter offers only segments nearer than the solid

@@ -90,13 +90,12 @@ PostLattice::Location PostLattice::locate(double e_m, double n_m) const {
       const int r = row + dr, c = col + dc;
       if (r < 0 || c < 0 || r > nrows - 2 || c > ncols - 2) continue;
       for (const auto& triangle : cell_triangles(r, c)) {
-        const auto height = height_in(post(triangle[0][0], triangle[0][1]),
-                                      post(triangle[1][0], triangle[1][1]),
-                                      post(triangle[2][0], triangle[2][1]), e_m, n_m);
+        const auto height =
+            height_in(post(triangle[0][0], triangle[0][1]), post(triangle[1][0], triangle[1][1]),
+                      post(triangle[2][0], triangle[2][1]), e_m, n_m);
         if (!height) continue;
         location.inside = true;
-        if (valid[index(r, c)] && valid[index(r + 1, c)] && valid[index(r, c + 1)] &&
-            valid[index(r + 1, c + 1)]) {
+        if (cell_has_heights(r, c)) {
           location.height_m = height;
           return location;
         }
@@ -109,12 +108,28 @@ PostLattice::Location PostLattice::locate(double e_m, double n_m) const {
 double PostLattice::height_at(double e_m, double n_m) const {
   const Location location = locate(e_m, n_m);
   if (location.height_m) return *location.height_m;
-  throw Error("DEM: (" + std::to_string(e_m) + ", " + std::to_string(n_m) + ") m lies " +
-              (location.inside ? "in a NODATA hole of the DEM"
-                               : "outside the part of the DEM loaded"));
+  throw Error(
+      "DEM: (" + std::to_string(e_m) + ", " + std::to_string(n_m) + ") m lies " +
+      (location.inside ? "in a NODATA hole of the DEM" : "outside the part of the DEM loaded"));
 }
 
 bool PostLattice::covers(double e_m, double n_m) const { return locate(e_m, n_m).inside; }
+
+bool PostLattice::cell_has_heights(int row, int col) const {
+  return valid[index(row, col)] != 0 && valid[index(row + 1, col)] != 0 &&
+         valid[index(row, col + 1)] != 0 && valid[index(row + 1, col + 1)] != 0;
+}
+
+std::array<Eigen::Vector3d, 3> PostLattice::cell_triangle(int row, int col, int which) const {
+  const auto corners = cell_triangles(row, col)[static_cast<std::size_t>(which)];
+  std::array<Eigen::Vector3d, 3> triangle{post(corners[0][0], corners[0][1]),
+                                          post(corners[1][0], corners[1][1]),
+                                          post(corners[2][0], corners[2][1])};
+  // Counter-clockwise from above whichever way the raster's rows and columns run.
+  if (signed_area2(triangle[0], triangle[1], triangle[2]) < 0.0)
+    std::swap(triangle[1], triangle[2]);
+  return triangle;
+}
 
 TriangleMesh PostLattice::mesh(const Eigen::AlignedBox2d& region) const {
   TriangleMesh mesh;
@@ -134,10 +149,7 @@ TriangleMesh PostLattice::mesh(const Eigen::AlignedBox2d& region) const {
   };
   for (int row = 0; row + 1 < nrows; ++row) {
     for (int col = 0; col + 1 < ncols; ++col) {
-      if (!valid[index(row, col)] || !valid[index(row + 1, col)] || !valid[index(row, col + 1)] ||
-          !valid[index(row + 1, col + 1)]) {
-        continue;
-      }
+      if (!cell_has_heights(row, col)) continue;
       Eigen::AlignedBox2d box;
       for (const Corner& corner : {Corner{row, col}, Corner{row + 1, col}, Corner{row, col + 1},
                                    Corner{row + 1, col + 1}}) {

@@ -14,6 +14,7 @@
 // Valid: ncols, nrows ≥ 2, posts.size() = valid.size() = ncols·nrows, finite coordinates.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string_view>
@@ -33,7 +34,9 @@ struct PostLattice {
     return static_cast<std::size_t>(row) * static_cast<std::size_t>(ncols) +
            static_cast<std::size_t>(col);
   }
-  [[nodiscard]] const Eigen::Vector3d& post(int row, int col) const { return posts[index(row, col)]; }
+  [[nodiscard]] const Eigen::Vector3d& post(int row, int col) const {
+    return posts[index(row, col)];
+  }
 
   // Throws owsim::Error "<where>: …" if the lattice breaks the valid range above.
   void validate(std::string_view where) const;
@@ -46,14 +49,19 @@ struct PostLattice {
   }
   // Whether (e, n) lies within the lattice's cells (in a hole or not).
   [[nodiscard]] bool covers(double e_m, double n_m) const;
+  // Whether all four posts of cell (row, col) hold heights (else the cell is a hole).
+  [[nodiscard]] bool cell_has_heights(int row, int col) const;
+  // Triangle `which` of cell (row, col), counter-clockwise from above: 0 is the one at post
+  // (row + 1, col + 1), 1 the one at post (row, col).
+  [[nodiscard]] std::array<Eigen::Vector3d, 3> cell_triangle(int row, int col, int which) const;
   // The triangles of every cell whose posts' box overlaps `region`, counter-clockwise from above.
   // Throws owsim::Error beyond 2^32 vertices.
   [[nodiscard]] TriangleMesh mesh(const Eigen::AlignedBox2d& region) const;
 
  private:
   struct Location {
-    bool inside = false;              // within the lattice's cells
-    std::optional<double> height_m;   // the surface's height there, unless in a hole
+    bool inside = false;             // within the lattice's cells
+    std::optional<double> height_m;  // the surface's height there, unless in a hole
   };
   [[nodiscard]] Location locate(double e_m, double n_m) const;
 };

@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <limits>
 
 namespace owsim {
 namespace {
@@ -33,6 +34,26 @@ std::optional<TriangleHit> intersect_triangle(const Eigen::Vector3d& origin,
   const double t = edge2.dot(q) * inv_det;
   if (!(t >= t_min && t <= t_max)) return std::nullopt;
   return TriangleHit{t, edge1.cross(edge2).normalized()};
+}
+
+TriangleHit plane_hit(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir,
+                      const Eigen::Vector3d& v0, const Eigen::Vector3d& v1,
+                      const Eigen::Vector3d& v2) {
+  const Eigen::Vector3d normal = (v1 - v0).cross(v2 - v0).normalized();
+  return {normal.dot(v0 - origin) / normal.dot(dir), normal};
+}
+
+TriangleHit exact_mesh_hit(const TriangleMesh& mesh, std::size_t index,
+                           const Eigen::Vector3d& origin, const Eigen::Vector3d& dir) {
+  const auto& triangle = mesh.triangles[index];
+  const Eigen::Vector3d& v0 = mesh.vertices[triangle[0]];
+  const Eigen::Vector3d& v1 = mesh.vertices[triangle[1]];
+  const Eigen::Vector3d& v2 = mesh.vertices[triangle[2]];
+  if (const auto exact = intersect_triangle(origin, dir, v0, v1, v2, 0.0,
+                                            std::numeric_limits<double>::infinity())) {
+    return *exact;
+  }
+  return plane_hit(origin, dir, v0, v1, v2);
 }
 
 }  // namespace owsim

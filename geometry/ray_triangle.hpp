@@ -6,7 +6,10 @@
 // through an edge or corner shared by two triangles hits at least one of them despite rounding.
 // Valid for finite inputs; degenerate triangles never hit.
 #include <Eigen/Core>
+#include <cstddef>
 #include <optional>
+
+#include "geometry/triangle_mesh.hpp"
 
 namespace owsim {
 
@@ -19,5 +22,18 @@ struct TriangleHit {
 [[nodiscard]] std::optional<TriangleHit> intersect_triangle(
     const Eigen::Vector3d& origin, const Eigen::Vector3d& dir, const Eigen::Vector3d& v0,
     const Eigen::Vector3d& v1, const Eigen::Vector3d& v2, double t_min, double t_max);
+
+// The ray's range and normal on the plane of triangle (v0, v1, v2), the normal in the
+// (v1−v0)×(v2−v0) direction: where a float tracer put the ray on this triangle while the double
+// ray passes just over its edge (its t would be off by the float rounding of origin and
+// direction, millimetres at grazing incidence). Valid for a ray not parallel to the plane.
+[[nodiscard]] TriangleHit plane_hit(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir,
+                                    const Eigen::Vector3d& v0, const Eigen::Vector3d& v1,
+                                    const Eigen::Vector3d& v2);
+
+// The ray on triangle `index` of `mesh` in double: intersect_triangle over all t ≥ 0, else
+// plane_hit.
+[[nodiscard]] TriangleHit exact_mesh_hit(const TriangleMesh& mesh, std::size_t index,
+                                         const Eigen::Vector3d& origin, const Eigen::Vector3d& dir);
 
 }  // namespace owsim

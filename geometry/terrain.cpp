@@ -85,7 +85,7 @@ double Terrain::height_at(double e_m, double n_m) const {
     case TerrainKind::grid:
       return grid.height_at(e_m, n_m);
     case TerrainKind::dem:
-      return dem.height_at(e_m, n_m);
+      return dem->height_at(e_m, n_m);
   }
   return 0.0;
 }
@@ -100,7 +100,7 @@ TriangleMesh Terrain::mesh(const Eigen::AlignedBox2d& region) const {
     case TerrainKind::grid:
       return grid_mesh(region, grid);
     case TerrainKind::dem:
-      return dem.mesh(region);
+      return dem->mesh(region);
   }
   return {};
 }

@@ -42,7 +42,7 @@ nlohmann::json run_fingerprint(const FlightSetup& setup, const SimulationOptions
     run["terrain_grid"] = terrain.hex();
   }
   if (setup.scenario.scene.terrain.kind == TerrainKind::dem) {
-    const PostLattice& dem = setup.scenario.scene.terrain.dem;
+    const PostLattice& dem = *setup.scenario.scene.terrain.dem;
     ContentHash terrain;
     const double shape[] = {static_cast<double>(dem.ncols), static_cast<double>(dem.nrows)};
     terrain.add(shape, sizeof shape);

@@ -226,7 +226,7 @@ void Quicklook::draw_terrain(const Terrain& terrain) {
     high = std::max(high, h);
   };
   if (terrain.kind == TerrainKind::dem) {
-    const PostLattice& dem = terrain.dem;
+    const PostLattice& dem = *terrain.dem;
     for (std::size_t i = 0; i < dem.posts.size() && i < dem.valid.size(); ++i) {
       if (dem.valid[i] != 0) extend(dem.posts[i].z());
     }

@@ -89,7 +89,7 @@ DecodeReport decode_recording_points(RecordingDecoder& decoder, const RecordingS
   const bool label =
       options.label_from_scene &&
       (!objects.conductors.empty() || !objects.cylinders.empty() || !objects.meshes.empty() ||
-       !objects.fog.empty() || !scene.embree_scene().terrain_mesh().triangles.empty());
+       !objects.fog.empty() || scene.embree_scene().has_terrain());
   // Fog returns are labelled with the volume echo SENSOR-SPEC §10 puts on the pulse's path.
   const WeatherMedia weather(objects.fog, objects.fog_backscatter_ratio_sr,
                              fog_object_index(objects), scenario.receiver);

@@ -277,7 +277,10 @@ void check_scene(const Scenario& scenario) {
   if (scene.terrain.kind == TerrainKind::flat)
     require_finite(scene.terrain.flat_u_m, "scene.terrain.flat_u");
   if (scene.terrain.kind == TerrainKind::grid) scene.terrain.grid.validate("scene.terrain.grid");
-  if (scene.terrain.kind == TerrainKind::dem) scene.terrain.dem.validate("scene.terrain.dem");
+  if (scene.terrain.kind == TerrainKind::dem) {
+    if (!scene.terrain.dem) throw Error("scene.terrain.dem: no DEM posts were loaded");
+    scene.terrain.dem->validate("scene.terrain.dem");
+  }
   IdCheck ids;
   for (std::size_t i = 0; i < scene.spans.size(); ++i) {
     const std::string key = indexed("scene.spans", i);

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <limits>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -650,14 +651,14 @@ class ScenarioReader {
       reach->max().array() += range_m;
     }
     try {
-      terrain.dem = read_dem_terrain(file, *frame_, reach);
+      terrain.dem = std::make_shared<const PostLattice>(read_dem_terrain(file, *frame_, reach));
       add_input(file, dataset_companions(file, false));
     } catch (const Error& error) {
       value.fail(error.what());
     }
     terrain.kind = TerrainKind::dem;
     for (const Eigen::Vector2d& point : flight) {
-      if (!terrain.dem.covers(point.x(), point.y())) {
+      if (!terrain.dem->covers(point.x(), point.y())) {
         value.fail(file.string() + ": does not cover the flight (at e = " + number_text(point.x()) +
                    ", n = " + number_text(point.y()) + " m)");
       }
