@@ -200,6 +200,12 @@ TEST_F(DemRuns, BadDemsGiveOneLineAndNoOutput) {
   write_hostile_vrt(dir_ / "passwd.vrt");
   fs::create_symlink("/dev/zero", dir_ / "zero.tif");
   fs::create_symlink("loop.tif", dir_ / "loop.tif");
+  // An ASCII grid whose header claims 10^6 × 10^6 millimetre cells around the flight, in 80 bytes.
+  std::ofstream(dir_ / "huge.asc") << "ncols 1000000\nnrows 1000000\nxllcorner 635263.5\n"
+                                      "yllcorner 5393926.2\ncellsize 0.001\nNODATA_value -9999\n"
+                                      "1 2 3 4\n";
+  fs::copy_file(fs::path(OWSIM_SOURCE_DIR) / "examples/data/real_corridor_dem.prj",
+                dir_ / "huge.prj");  // UTM zone 32N
   const struct {
     std::string file;
     double east_m;
@@ -216,7 +222,11 @@ TEST_F(DemRuns, BadDemsGiveOneLineAndNoOutput) {
                {"/etc/passwd", 200.0, "outside the folder"},
                {"../utm.tif", 200.0, "outside the folder"},
                {"zero.tif", 200.0, "outside the folder"},
-               {"loop.tif", 200.0, "a symbolic link loop"}};
+               {"loop.tif", 200.0, "a symbolic link loop"},
+               // Issue 33, family 4: refused before anything is allocated for it.
+               {"huge.asc", 200.0,
+                "is 1000000 × 1000000 posts, about 64000 GB at 64 bytes a post, more than this "
+                "machine's"}};
   for (const auto& bad : cases) {
     SCOPED_TRACE(bad.file);
     const CliResult result = run(bad.file, "bad", bad.east_m);

@@ -1,6 +1,6 @@
 #pragma once
 // A DEM raster as terrain (scenario key terrain.dem, ../shared/INTERFACE.md "Real-world scenes"):
-// read through the optional module libowsim_gdal.so (GDAL, any raster format and CRS it reads),
+// read through the optional module libowsim_gdal.so (GDAL: the raster formats it lists, any CRS),
 // each post reprojected to WGS-84 by GDAL/PROJ and placed in the local ENU frame by GeographicLib
 // (LocalCartesian), so the lattice is exact wherever it lies; the surface between posts is
 // geometry/post_lattice.hpp's triangles.
@@ -17,9 +17,14 @@
 
 namespace owsim {
 
+// The memory a post in reach costs while a flight runs (measured, docs/scenario.md "Terrain from
+// a DEM"): the lattice in double (25 bytes), Embree's float copy and grid BVH. A DEM whose posts
+// in reach would need more than the machine's physical memory is refused before it is read.
+inline constexpr int kDemBytesPerPost = 64;
+
 // Throws owsim::Error with one line naming the file and the problem (the module missing, a file
 // GDAL cannot open, a CRS it cannot transform, a DEM that does not cover the reach, fewer than
-// 2 × 2 posts there).
+// 2 × 2 posts there, more posts than fit in memory).
 [[nodiscard]] PostLattice read_dem_terrain(const std::filesystem::path& file,
                                            const LocalFrame& frame,
                                            const std::optional<Eigen::AlignedBox2d>& reach);

@@ -127,7 +127,7 @@ Dataset open_confined(const char* path, unsigned kind, const char* const* driver
 }
 
 void read_dem(const char* path, bool whole_file, double lon_min, double lat_min, double lon_max,
-              double lat_max, owsim_dem_sink sink, void* sink_context) {
+              double lat_max, owsim_dem_begin begin, owsim_dem_rows rows, void* sink_context) {
   GDALAllRegister();
   CPLErrorReset();
   const Dataset dataset = open_confined(path, GDAL_OF_RASTER, kDemDrivers, "terrain.dem");
@@ -169,42 +169,50 @@ void read_dem(const char* path, bool whole_file, double lon_min, double lat_min,
   if (window.ncols < 2 || window.nrows < 2) {
     throw std::runtime_error("has fewer than 2 × 2 posts where the flight is");
   }
-  GDALRasterBandH band = GDALGetRasterBand(dataset.get(), 1);
-  const auto count = static_cast<std::size_t>(window.ncols) * window.nrows;
-  std::vector<double> values(count);
-  if (GDALRasterIO(band, GF_Read, window.col0, window.row0, window.ncols, window.nrows,
-                   values.data(), window.ncols, window.nrows, GDT_Float64, 0, 0) != CE_None) {
-    throw std::runtime_error("GDAL cannot read its heights" + gdal_reason());
+  if (begin(sink_context, window.ncols, window.nrows) != 0) {
+    throw std::runtime_error("refused by the reader");
   }
+  GDALRasterBandH band = GDALGetRasterBand(dataset.get(), 1);
   int has_nodata = 0;
   const double nodata = GDALGetRasterNoDataValue(band, &has_nodata);
   const double scale = GDALGetRasterScale(band, nullptr),
                offset = GDALGetRasterOffset(band, nullptr);
-  std::vector<double> x(count), y(count), z(count);
-  std::vector<unsigned char> valid(count);
-  for (int r = 0; r < window.nrows; ++r) {
-    for (int c = 0; c < window.ncols; ++c) {
-      const auto i = static_cast<std::size_t>(r) * window.ncols + c;
-      const double value = values[i];
-      valid[i] = std::isfinite(value) && !(has_nodata != 0 && value == nodata) ? 1 : 0;
-      x[i] = gt[0] + (window.col0 + c + 0.5) * gt[1];
-      y[i] = gt[3] + (window.row0 + r + 0.5) * gt[5];
-      z[i] = valid[i] != 0 ? value * scale + offset : 0.0;
+  // Blocks of about a million posts: the module's buffers stay small whatever the lattice.
+  const int block_rows = std::max(1, 1'000'000 / window.ncols);
+  for (int row0 = 0; row0 < window.nrows; row0 += block_rows) {
+    const int nrows = std::min(block_rows, window.nrows - row0);
+    const auto count = static_cast<std::size_t>(window.ncols) * static_cast<std::size_t>(nrows);
+    std::vector<double> values(count);
+    if (GDALRasterIO(band, GF_Read, window.col0, window.row0 + row0, window.ncols, nrows,
+                     values.data(), window.ncols, nrows, GDT_Float64, 0, 0) != CE_None) {
+      throw std::runtime_error("GDAL cannot read its heights" + gdal_reason());
     }
+    std::vector<double> x(count), y(count), z(count);
+    std::vector<unsigned char> valid(count);
+    for (int r = 0; r < nrows; ++r) {
+      for (int c = 0; c < window.ncols; ++c) {
+        const auto i = static_cast<std::size_t>(r) * window.ncols + c;
+        const double value = values[i];
+        valid[i] = std::isfinite(value) && !(has_nodata != 0 && value == nodata) ? 1 : 0;
+        x[i] = gt[0] + (window.col0 + c + 0.5) * gt[1];
+        y[i] = gt[3] + (window.row0 + row0 + r + 0.5) * gt[5];
+        z[i] = valid[i] != 0 ? value * scale + offset : 0.0;
+      }
+    }
+    std::vector<int> success(count);
+    if (!OCTTransformEx(to_wgs.get(), static_cast<int>(count), x.data(), y.data(), z.data(),
+                        success.data()) ||
+        std::find(success.begin(), success.end(), 0) != success.end()) {
+      throw std::runtime_error("GDAL/PROJ cannot transform its posts to WGS-84" + gdal_reason());
+    }
+    std::vector<double> lon_lat_h(3 * count);
+    for (std::size_t i = 0; i < count; ++i) {
+      lon_lat_h[3 * i] = x[i];
+      lon_lat_h[3 * i + 1] = y[i];
+      lon_lat_h[3 * i + 2] = z[i];
+    }
+    rows(sink_context, row0, nrows, lon_lat_h.data(), valid.data());
   }
-  std::vector<int> success(count);
-  if (!OCTTransformEx(to_wgs.get(), static_cast<int>(count), x.data(), y.data(), z.data(),
-                      success.data()) ||
-      std::find(success.begin(), success.end(), 0) != success.end()) {
-    throw std::runtime_error("GDAL/PROJ cannot transform its posts to WGS-84" + gdal_reason());
-  }
-  std::vector<double> lon_lat_h(3 * count);
-  for (std::size_t i = 0; i < count; ++i) {
-    lon_lat_h[3 * i] = x[i];
-    lon_lat_h[3 * i + 1] = y[i];
-    lon_lat_h[3 * i + 2] = z[i];
-  }
-  sink(sink_context, window.ncols, window.nrows, lon_lat_h.data(), valid.data());
 }
 
 struct LayerFeatureReleaser {
@@ -365,9 +373,10 @@ int guarded(char* error, std::size_t error_size, const Body& body) {
 
 extern "C" __attribute__((visibility("default"))) int owsim_dem_read(
     const char* path, int whole_file, double lon_min, double lat_min, double lon_max,
-    double lat_max, owsim_dem_sink sink, void* sink_context, char* error, std::size_t error_size) {
+    double lat_max, owsim_dem_begin begin, owsim_dem_rows rows, void* sink_context, char* error,
+    std::size_t error_size) {
   return guarded(error, error_size, [&](const Failures&) {
-    read_dem(path, whole_file != 0, lon_min, lat_min, lon_max, lat_max, sink, sink_context);
+    read_dem(path, whole_file != 0, lon_min, lat_min, lon_max, lat_max, begin, rows, sink_context);
   });
 }
 
