@@ -25,8 +25,10 @@ find_package(PkgConfig REQUIRED)
 pkg_check_modules(OpenImageIO REQUIRED IMPORTED_TARGET GLOBAL OpenImageIO)
 # GDAL: only the optional module libowsim_gdal.so (DEM terrain) links it.
 pkg_check_modules(GDAL REQUIRED IMPORTED_TARGET GLOBAL gdal)
-# assimp: only the optional module libowsim_mesh.so (triangle meshes) links it.
+# assimp and tinyobjloader (OBJ, double coordinates): only the optional module libowsim_mesh.so
+# (triangle meshes) links them.
 pkg_check_modules(ASSIMP REQUIRED IMPORTED_TARGET GLOBAL assimp)
+pkg_check_modules(TINYOBJLOADER REQUIRED IMPORTED_TARGET GLOBAL tinyobjloader_double)
 
 # MPI (Debian's OpenMPI) is optional: with it, libowsim_mpi.so is built and `mpirun … owsim` runs
 # distributed (distributed/); without it everything else builds and owsim runs on one machine.

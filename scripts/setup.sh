@@ -10,6 +10,7 @@ packages=(
   libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libfmt-dev
   libgdal-dev python3-gdal         # DEM terrain (libowsim_gdal.so) and its test oracle
   libassimp-dev                    # triangle meshes (libowsim_mesh.so)
+  libtinyobjloader-dev             # OBJ meshes, fast (libowsim_mesh.so)
   python3-numpy python3-scipy python3-pyproj
   pybind11-dev python3-dev         # the Python module (python/)
   libopenmpi-dev openmpi-bin       # mpirun … owsim run / sweep (distributed/, libowsim_mpi.so)

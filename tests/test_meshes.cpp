@@ -6,12 +6,16 @@
 // summary, and bad meshes giving one line and no output.
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <random>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "cli_runner.hpp"
 #include "geometry/error.hpp"
@@ -178,6 +182,90 @@ TEST_F(Meshes, FilesAreReadAsTriangles) {
   const TriangleMesh tower = read_mesh_file(dir_ / "tower.ply").mesh;
   EXPECT_EQ(tower.triangles.size(), 6u);
   EXPECT_EQ(tower.vertices.size(), 5u);
+}
+
+// An OBJ is read by tinyobjloader, a PLY by assimp: the barn written both ways, with OBJ's
+// v/vt/vn face syntax, negative (relative) indices and a polygon of five corners, is the same
+// closed surface — the same area and enclosed volume (so the same winding), the same vertices.
+TEST_F(Meshes, TheObjReaderAgreesWithAssimpOnTheSameSurface) {
+  write("barn_faces.obj", R"(v -12 -6 0
+v 12 -6 0
+v 12 6 0
+v -12 6 0
+v -12 -6 8
+v 12 -6 8
+v 12 6 8
+v -12 6 8
+v -12 0 13
+v 12 0 13
+vt 0 0
+vn 0 0 1
+f 1/1/1 2/1/1 6/1/1 5/1/1
+f 2//1 3//1 7//1 6//1
+f -8 -7 -3 -4
+f 4 1 5 8
+f 5 6 10 9
+f 7 8 9 10
+f 6 7 10
+f 8 5 9
+)");
+  write("barn.ply", R"(ply
+format ascii 1.0
+element vertex 10
+property float x
+property float y
+property float z
+element face 8
+property list uchar int vertex_indices
+end_header
+-12 -6 0
+12 -6 0
+12 6 0
+-12 6 0
+-12 -6 8
+12 -6 8
+12 6 8
+-12 6 8
+-12 0 13
+12 0 13
+4 0 1 5 4
+4 1 2 6 5
+4 2 3 7 6
+4 3 0 4 7
+4 4 5 9 8
+4 6 7 8 9
+3 5 6 9
+3 7 4 8
+)");
+  const auto area_and_volume = [](const TriangleMesh& mesh) {
+    double area = 0.0, volume = 0.0;
+    for (const auto& t : mesh.triangles) {
+      const Eigen::Vector3d& a = mesh.vertices[t[0]];
+      const Eigen::Vector3d& b = mesh.vertices[t[1]];
+      const Eigen::Vector3d& c = mesh.vertices[t[2]];
+      area += 0.5 * (b - a).cross(c - a).norm();
+      volume += a.dot(b.cross(c)) / 6.0;
+    }
+    return std::pair{area, volume};
+  };
+  const TriangleMesh obj = read_mesh_file(dir_ / "barn_faces.obj").mesh;
+  const TriangleMesh ply = read_mesh_file(dir_ / "barn.ply").mesh;
+  EXPECT_EQ(obj.triangles.size(), 14u);
+  EXPECT_EQ(ply.triangles.size(), 14u);
+  const auto [obj_area, obj_volume] = area_and_volume(obj);
+  const auto [ply_area, ply_volume] = area_and_volume(ply);
+  EXPECT_NEAR(obj_area, ply_area, 1e-9);
+  // Walls 2·(24·8) + 2·(12·8), roof 2·(24·√61), gables 2·(½·12·5).
+  EXPECT_NEAR(obj_area, 2 * 24 * 8 + 2 * 12 * 8 + 2 * 24 * std::sqrt(61.0) + 2 * 0.5 * 12 * 5,
+              1e-9);
+  EXPECT_NEAR(obj_volume, ply_volume, 1e-9);
+  EXPECT_NEAR(std::abs(obj_volume), 24 * 12 * 8 + 0.5 * 12 * 5 * 24, 1e-9);
+  std::vector<std::array<double, 3>> obj_points, ply_points;
+  for (const auto& v : obj.vertices) obj_points.push_back({v.x(), v.y(), v.z()});
+  for (const auto& v : ply.vertices) ply_points.push_back({v.x(), v.y(), v.z()});
+  std::sort(obj_points.begin(), obj_points.end());
+  std::sort(ply_points.begin(), ply_points.end());
+  EXPECT_EQ(obj_points, ply_points);
 }
 
 TEST_F(Meshes, ReturnsLieOnTheMeshesAndEachMeshIsAnObject) {
