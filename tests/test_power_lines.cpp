@@ -119,6 +119,10 @@ TEST_F(PowerLines, BadLinesGiveOneLineAndNoOutput) {
         "\"Feature\", \"properties\": {\"name\": \"Stra\xdfe\"}, \"geometry\": "
         "{\"type\": \"LineString\", \"coordinates\": [[10.8447, 48.6845], "
         "[10.8447, 48.6912]]}}]}");
+  // A name with a NUL character, which GDAL would cut short.
+  write("nul.geojson", R"({"type": "FeatureCollection", "features": [{"type": "Feature",
+      "properties": {"name": "a\u0000b"}, "geometry": {"type": "LineString",
+      "coordinates": [[10.8447, 48.6845], [10.8447, 48.6912]]}}]})");
   std::string towers;  // one tower more than owsim builds from a file
   for (int i = 0; i <= 100'000; ++i) {
     towers += (i ? "," : "") + std::string("[") + std::to_string(10.8 + i * 1e-6) + ",48.68]";
@@ -136,6 +140,7 @@ TEST_F(PowerLines, BadLinesGiveOneLineAndNoOutput) {
                {"{file: unknown_crs.geojson}", "layer 0: its CRS cannot be read"},
                {"{file: latin1.geojson}", "feature 0: property 'name' is not UTF-8 text"},
                {"{file: lines.vrt}", "which power_lines does not accept"},
+               {"{file: nul.geojson}", "a NUL character (\\u0000), which GDAL would cut short"},
                {"{file: too_many.geojson}", "holds more than 100000 towers"},
                {"{file: 'http://127.0.0.1:9/lines.geojson'}", "a URL or a connection string"},
                {"{file: points.geojson}", "holds no LineString"},

@@ -22,7 +22,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <exception>
+#include <fstream>
+#include <iterator>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
@@ -266,11 +269,30 @@ void collect_lines(OGRGeometryH geometry, std::vector<OGRGeometryH>& lines) {
   }
 }
 
+// GeoJSON may write a NUL character as \u0000 inside a string; GDAL hands strings over as C
+// strings, so a name holding one would arrive cut short, silently. Such a file is refused.
+void refuse_escaped_nul(const char* path, GDALDatasetH dataset) {
+  const char* driver = GDALGetDriverShortName(GDALGetDatasetDriver(dataset));
+  if (std::strcmp(driver, "GeoJSON") != 0 && std::strcmp(driver, "GeoJSONSeq") != 0) return;
+  std::ifstream file(path, std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  for (std::size_t at = text.find("\\u"); at != std::string::npos; at = text.find("\\u", at + 1)) {
+    // After an escaped backslash (\\u0000 in the file) it is text, not an escape.
+    std::size_t backslashes = 0;
+    while (at > backslashes && text[at - backslashes - 1] == '\\') ++backslashes;
+    if (backslashes % 2 == 0 && text.compare(at + 2, 4, "0000") == 0) {
+      throw std::runtime_error(
+          "holds a text value with a NUL character (\\u0000), which GDAL would cut short");
+    }
+  }
+}
+
 void read_lines(const char* path, owsim_line_sink sink, void* sink_context,
                 const Failures& failures) {
   GDALAllRegister();
   CPLErrorReset();
   const Dataset dataset = open_confined(path, GDAL_OF_VECTOR, kLineDrivers, "power_lines");
+  refuse_escaped_nul(path, dataset.get());
   const Srs wgs84(OSRNewSpatialReference(nullptr));
   OSRImportFromEPSG(wgs84.get(), 4326);
   OSRSetAxisMappingStrategy(wgs84.get(), OAMS_TRADITIONAL_GIS_ORDER);
