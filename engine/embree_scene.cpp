@@ -113,7 +113,7 @@ RTCScene new_scene(const EmbreeDevice& device) {
 
 EmbreeScene::EmbreeScene(const EmbreeDevice& device, const Scene& scene,
                          const ReceiverParams& receiver, const Eigen::AlignedBox2d& region,
-                         double max_range_m)
+                         double max_range_m, std::size_t dem_grid_from_posts)
     : objects_(&scene), receiver_(receiver), max_range_m_(max_range_m), region_(region) {
   if (!(std::isfinite(max_range_m) && max_range_m > 0.0)) {
     throw Error("engine: the maximum range must be positive and finite");
@@ -132,7 +132,7 @@ EmbreeScene::EmbreeScene(const EmbreeDevice& device, const Scene& scene,
     }
   }
   if (!scene.cylinders.empty()) attach_cylinders(device);
-  attach_terrain(device);
+  attach_terrain(device, dem_grid_from_posts);
   rtcCommitScene(solids_);
   rtcCommitScene(wires_);
   device.check("building the scene");
@@ -209,9 +209,9 @@ void EmbreeScene::attach_cylinders(const EmbreeDevice& device) {
   device.check("adding poles and trees");
 }
 
-void EmbreeScene::attach_terrain(const EmbreeDevice& device) {
+void EmbreeScene::attach_terrain(const EmbreeDevice& device, std::size_t dem_grid_from_posts) {
   const Terrain& terrain = scene().terrain;
-  if (terrain.kind == TerrainKind::dem) {
+  if (terrain.kind == TerrainKind::dem && terrain.dem->posts.size() > dem_grid_from_posts) {
     terrain_grids_.emplace(*terrain.dem, region_);
     if (terrain_grids_->grid_count() > 0) {
       RTCGeometry geometry = terrain_grids_->grid_geometry(device.get());

@@ -4,8 +4,9 @@
 //   solids  — what stops the central ray:
 //     meshes     — one triangle geometry per mesh object (buildings, lattice towers);
 //     cylinders  — one USER geometry (poles and trees), intersected in double precision;
-//     terrain    — over the region the sensor can reach: a DEM as grid primitives on its posts
-//                  (engine/terrain_grids.hpp), a flat plane or height grid as one triangle mesh;
+//     terrain    — over the region the sensor can reach: one triangle mesh, or for a DEM of more
+//                  than kDemGridFromPosts posts grid primitives on its posts
+//                  (engine/terrain_grids.hpp);
 //     a triangle or grid hit is re-intersected in double (engine/frame_tracer.cpp);
 //   wires   — every conductor's segments in one FLAT_LINEAR_CURVE geometry (one Embree object
 //             and vertex buffer however many conductors: 35,000 geometries cost a 5,000-span
@@ -43,11 +44,18 @@ struct WireSegments {
   std::vector<std::uint32_t> first_segment;  // by conductor
 };
 
+// A DEM of up to this many posts in reach is traced as triangles, ~10 % faster than Embree's grid
+// primitives but ~200 bytes a post instead of ~15 (README "Terrain from a DEM"): up to 200 MB.
+inline constexpr std::size_t kDemGridFromPosts = 1'000'000;
+
 class EmbreeScene {
  public:
   // `region` bounds the terrain mesh (east, north); `max_range_m` sizes the wire capture radius.
+  // A DEM of more than `dem_grid_from_posts` posts becomes grid primitives, a smaller one
+  // triangles (see kDemGridFromPosts).
   EmbreeScene(const EmbreeDevice& device, const Scene& scene, const ReceiverParams& receiver,
-              const Eigen::AlignedBox2d& region, double max_range_m);
+              const Eigen::AlignedBox2d& region, double max_range_m,
+              std::size_t dem_grid_from_posts = kDemGridFromPosts);
   ~EmbreeScene();
   EmbreeScene(const EmbreeScene&) = delete;
   EmbreeScene& operator=(const EmbreeScene&) = delete;
@@ -90,7 +98,7 @@ class EmbreeScene {
   void attach_conductors(const EmbreeDevice& device);
   void attach_cylinders(const EmbreeDevice& device);
   unsigned attach_triangles(const EmbreeDevice& device, const TriangleMesh& mesh, const char* what);
-  void attach_terrain(const EmbreeDevice& device);
+  void attach_terrain(const EmbreeDevice& device, std::size_t dem_grid_from_posts);
 
   const Scene* objects_;
   ReceiverParams receiver_;

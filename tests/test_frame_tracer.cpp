@@ -498,7 +498,11 @@ TEST(FrameTracerAgreement, DemGridsStopTheRayLikeTheBruteForceOverItsTriangles) 
   const ReceiverParams receiver;
   const EmbreeDevice device;
   const Eigen::AlignedBox2d region(Eigen::Vector2d(-2000, -2000), Eigen::Vector2d(2000, 2000));
-  const EmbreeScene scene(device, objects, receiver, region, timeout_range_m(receiver.counter));
+  const EmbreeScene scene(device, objects, receiver, region, timeout_range_m(receiver.counter),
+                          0);  // grids however small the lattice
+  // Grids, and triangles for the tiles with holes.
+  ASSERT_NE(scene.terrain_geom_id(), RTC_INVALID_GEOMETRY_ID);
+  ASSERT_NE(scene.terrain_patches_geom_id(), RTC_INVALID_GEOMETRY_ID);
   const BruteForceTracer brute(objects, scene.terrain_mesh(), receiver);
 
   const Eigen::Vector3d sensor(10.0, -20.0, 80.0);
