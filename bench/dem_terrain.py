@@ -8,7 +8,11 @@
 2. memory against the file: the same flight (`owsim run --frames 30 --outputs d64,summary`) over
    DEMs of growing extent, from the flight's reach to a country-sized raster; peak RSS (the child's
    own ru_maxrss), set-up time (summary.json's setup_s) and the file's size. Only the posts within
-   the flight's reach are read, so the peak should not follow the file.
+   the flight's reach are read, so the peak should not follow the file;
+3. memory against the posts in reach (issue 33): a 1 s flight 60 m up (reach 2.5 × 2.5 km) over
+   3 × 3 km DEMs of 4, 2 and 1 m cells; peak RSS and the bytes each post in reach costs, from the
+   difference between 1 m and 2 m (both above a million posts: grid primitives; what the loader's
+   kDemBytesPerPost bounds).
 
     /usr/bin/python3 bench/dem_terrain.py [--owsim build/owsim] [--extents-km 6,30,120]
 
@@ -108,6 +112,44 @@ def run(owsim, scenario, out):
     return usage.ru_maxrss / 1000.0, setup, wall
 
 
+HOVER = """name: fine_dem
+seed: 1
+origin: {lat: 48.6881, lon: 10.8447, h: 450.0}
+sensor: {model: milows}
+trajectory:
+  waypoints:
+    speed_mps: 40
+    points: [{e: -20, n: 0, u: 60}, {e: 20, n: 0, u: 60}]
+  start_s: 0
+  duration_s: 1
+scene:
+  terrain: {dem: DEM}
+"""
+TIMEOUT_RANGE_M = 1238.36  # SENSOR-SPEC: 2066 ticks
+
+
+def posts_in_reach(cell_m):
+    """The posts of the reach box (the 40 m flown, widened by the timeout range), one around."""
+    east = 40.0 + 2 * TIMEOUT_RANGE_M
+    north = 2 * TIMEOUT_RANGE_M
+    return (east / cell_m + 3) * (north / cell_m + 3)
+
+
+def peak_over(owsim, folder, dem):
+    path = os.path.join(folder, "hover_" + os.path.basename(dem) + ".yaml")
+    with open(path, "w", encoding="utf-8") as f:
+        f.write(HOVER.replace("DEM", dem))
+    out = os.path.join(folder, "out_" + os.path.basename(dem))
+    child = subprocess.Popen([owsim, "run", path, "--outputs", "d64,summary", "--out", out,
+                              "--quiet"])
+    _, status, usage = os.wait4(child.pid, 0)
+    if status != 0:
+        sys.exit(f"owsim run {path} failed")
+    with open(os.path.join(out, "summary.json"), encoding="utf-8") as f:
+        setup = float(re.search(r'"setup_s": ([0-9.e-]+)', f.read(4000)).group(1))
+    return usage.ru_maxrss / 1000.0, setup
+
+
 def write_in_child(path, km, cell_m):
     subprocess.run([sys.executable, os.path.abspath(__file__), "--write", path, str(km),
                     str(cell_m)], check=True)
@@ -153,6 +195,19 @@ def main():
             print(f"| {km:g} × {km:g} km | {size / 1e6:.0f} | {cells:,} | {setup:.3f} | "
                   f"{peak:.0f} | {wall:.2f} |")
             os.remove(dem)
+        print()
+        print("| cells (3 × 3 km) | posts in reach | set-up s | peak MB |")
+        print("|---|---|---|---|")
+        peaks = {}
+        for cell in (4.0, 2.0, 1.0):
+            dem = os.path.join(folder, f"fine_{cell:g}m.tif")
+            write_in_child(dem, 3.0, cell)
+            peak, setup = peak_over(args.owsim, folder, dem)
+            peaks[cell] = peak
+            print(f"| {cell:g} m | {posts_in_reach(cell) / 1e6:.1f} M | {setup:.2f} | {peak:.0f} |")
+            os.remove(dem)
+        per_post = (peaks[1.0] - peaks[2.0]) * 1e6 / (posts_in_reach(1.0) - posts_in_reach(2.0))
+        print(f"\nbytes a post in reach (1 m against 2 m): {per_post:.0f}")
 
 
 if __name__ == "__main__":

@@ -1,6 +1,6 @@
 #pragma once
 // The C entry points of libowsim_mesh.so (io/scenario/mesh/mesh_module.cpp), the optional module
-// that reads triangle meshes with assimp. The loader (io/scenario/mesh_file.cpp) refuses a module
+// that reads triangle meshes (OBJ with tinyobjloader, other formats with assimp). The loader (io/scenario/mesh_file.cpp) refuses a module
 // whose owsim_mesh_module_abi() differs from OWSIM_MESH_MODULE_ABI.
 #include <cstddef>
 
