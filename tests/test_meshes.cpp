@@ -86,8 +86,8 @@ TEST(MeshPlacement, RandomPlacementsKeepShapeAndWinding) {
 }
 
 // A 24 × 12 m barn with 8 m walls and a 13 m ridge: six quads and two triangles.
-const char* kBarnObj = R"(# barn
-v -12 -6 0
+// Its ten corners, then its faces.
+const std::string kBarnCorners = R"(v -12 -6 0
 v 12 -6 0
 v 12 6 0
 v -12 6 0
@@ -97,7 +97,8 @@ v 12 6 8
 v -12 6 8
 v -12 0 13
 v 12 0 13
-f 1 2 6 5
+)";
+const std::string kBarnObj = "# barn\n" + kBarnCorners + R"(f 1 2 6 5
 f 2 3 7 6
 f 3 4 8 7
 f 4 1 5 8
@@ -188,17 +189,7 @@ TEST_F(Meshes, FilesAreReadAsTriangles) {
 // v/vt/vn face syntax, negative (relative) indices and a polygon of five corners, is the same
 // closed surface — the same area and enclosed volume (so the same winding), the same vertices.
 TEST_F(Meshes, TheObjReaderAgreesWithAssimpOnTheSameSurface) {
-  write("barn_faces.obj", R"(v -12 -6 0
-v 12 -6 0
-v 12 6 0
-v -12 6 0
-v -12 -6 8
-v 12 -6 8
-v 12 6 8
-v -12 6 8
-v -12 0 13
-v 12 0 13
-vt 0 0
+  write("barn_faces.obj", kBarnCorners + R"(vt 0 0
 vn 0 0 1
 f 1/1/1 2/1/1 6/1/1 5/1/1
 f 2//1 3//1 7//1 6//1
