@@ -12,7 +12,10 @@
 3. memory against the posts in reach (issue 33): a 1 s flight 60 m up (reach 2.5 × 2.5 km) over
    3 × 3 km DEMs of 4, 2 and 1 m cells; peak RSS and the bytes each post in reach costs, from the
    difference between 1 m and 2 m (both above a million posts: grid primitives; what the loader's
-   kDemBytesPerPost bounds).
+   kDemBytesPerPost bounds);
+4. the corridor's whole 65 s flight over a 6 × 6 km DEM of 1 m cells (36 M cells; its reach
+   holds ~15 M posts): peak RSS, set-up and wall time (`--corridor-1m`, alone: the GeoTIFF takes
+   a minute to write).
 
     /usr/bin/python3 bench/dem_terrain.py [--owsim build/owsim] [--extents-km 6,30,120]
 
@@ -163,7 +166,28 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--owsim", default=os.path.join(ROOT, "build", "owsim"))
     parser.add_argument("--extents-km", default="6,30,120")
+    parser.add_argument("--corridor-1m", action="store_true",
+                        help="only the corridor's whole flight over a 1 m DEM")
     args = parser.parse_args()
+    if args.corridor_1m:
+        with tempfile.TemporaryDirectory(prefix="owsim_dem_bench_") as folder:
+            dem = os.path.join(folder, "corridor_1m.tif")
+            size = write_in_child(dem, 6.0, 1.0)
+            scenario = scenario_over(folder, dem)
+            out = os.path.join(folder, "out")
+            start = time.perf_counter()
+            child = subprocess.Popen([args.owsim, "run", scenario, "--outputs", "d64,summary",
+                                      "--out", out, "--quiet"])
+            _, status, usage = os.wait4(child.pid, 0)
+            wall = time.perf_counter() - start
+            if status != 0:
+                sys.exit(f"owsim run {scenario} failed")
+            with open(os.path.join(out, "summary.json"), encoding="utf-8") as f:
+                summary = json.load(f)
+            print(f"corridor, whole flight ({summary['frames']} frames) over a 6 × 6 km 1 m DEM "
+                  f"({size / 1e6:.0f} MB): peak {usage.ru_maxrss / 1000.0:.0f} MB, set-up "
+                  f"{summary['setup_s']:.2f} s, wall {wall:.2f} s")
+        return
     extents = [float(x) for x in args.extents_km.split(",")]
     with tempfile.TemporaryDirectory(prefix="owsim_dem_bench_") as folder:
         flat = flat_scenario(folder)
