@@ -22,6 +22,7 @@
 
 #include "geometry/post_lattice.hpp"
 #include "geometry/ray_triangle.hpp"
+#include "geometry/triangle_mesh.hpp"
 #include "sensor/pulse_candidates.hpp"
 
 namespace owsim {
