@@ -336,6 +336,14 @@ TEST_F(Meshes, BadMeshesGiveOneLineAndNoOutput) {
         "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
         "property float y\nproperty float z\nelement face 4000000000\n"
         "property list uchar int vertex_indices\nend_header\n");
+  // Found by fuzz_scene_files: a count beyond any integer was converted to one (undefined).
+  write("beyond_faces.ply",
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+        "property float z\nelement face 1e55\nproperty list uchar int vertex_indices\n"
+        "end_header\n");
+  // Found by fuzz_scene_files: assimp loops forever on a format line holding other bytes.
+  using namespace std::string_literals;  // the literal holds a NUL byte
+  write("bad_format.ply", "ply\nformat ascii\0\xff\xff 1.0\nelement vertex 0\nend_header\n"s);
   const struct {
     std::string entry;
     std::string says;
@@ -355,6 +363,9 @@ TEST_F(Meshes, BadMeshesGiveOneLineAndNoOutput) {
       // A header claiming 4·10⁹ faces in a few hundred bytes ran out of memory in assimp.
       {"{id: m, file: huge_faces.ply, at: {e: 0, n: 0}}",
        "the PLY header claims 3 vertex, 4000000000 face, more than its 178 bytes can hold"},
+      {"{id: m, file: bad_format.ply, at: {e: 0, n: 0}}", "its PLY format line is not"},
+      {"{id: m, file: beyond_faces.ply, at: {e: 0, n: 0}}",
+       "the PLY header claims 3 vertex, 1e55 face, more than its"},
   };
   for (const auto& bad : cases) {
     SCOPED_TRACE(bad.entry);

@@ -16,6 +16,7 @@
 #include <assimp/Importer.hpp>
 #include <cctype>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <exception>
 #include <filesystem>
@@ -224,11 +225,21 @@ bool is_obj(const std::filesystem::path& path) {
   return extension == ".obj";
 }
 
-// A PLY header's element counts against the file's size, before assimp reserves them (a header
-// claiming 4·10⁹ faces in a 200-byte file ran out of memory): every element takes at least 2
-// bytes in ASCII (a digit and a line end) and its fixed-size properties' bytes in binary (a list
-// at least its count's size). Returns the problem, or "" when the counts can fit.
-std::string ply_counts_problem(const std::filesystem::path& path) {
+// `text` with every byte outside printable ASCII as '?': a file's bytes quoted in a message.
+std::string printable(std::string text) {
+  for (char& c : text) {
+    if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) > 0x7e) c = '?';
+  }
+  return text;
+}
+
+// A PLY header checked before assimp reads it: its lines must be the format's (assimp 5.2 loops
+// forever on a header whose format line holds other bytes, found by fuzz_scene_files), and its
+// element counts must fit the file's size (a header claiming 4·10⁹ faces in a 200-byte file ran
+// out of memory): every element takes at least 2 bytes in ASCII (a digit and a line end) and its
+// fixed-size properties' bytes in binary (a list at least its count's size). Returns the problem,
+// or "" when the header is sound.
+std::string ply_header_problem(const std::filesystem::path& path) {
   std::ifstream file(path, std::ios::binary);
   std::string line;
   if (!std::getline(file, line) || line.rfind("ply", 0) != 0) return "";  // not a PLY
@@ -246,30 +257,47 @@ std::string ply_counts_problem(const std::filesystem::path& path) {
   const auto close_element = [&] {
     least_bytes += count * (ascii ? 2.0 : std::max(1.0, element_bytes));
   };
+  bool ended = false;
   for (int lines = 0; lines < 10'000 && std::getline(file, line); ++lines) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
     std::istringstream words(line);
     std::string keyword;
     words >> keyword;
     if (keyword == "format") {
-      std::string format;
-      words >> format;
+      std::string format, version, rest;
+      words >> format >> version >> rest;
+      if ((format != "ascii" && format != "binary_little_endian" &&
+           format != "binary_big_endian") ||
+          version != "1.0" || !rest.empty()) {
+        return "its PLY format line is not 'format ascii|binary_little_endian|binary_big_endian "
+               "1.0'";
+      }
       ascii = format == "ascii";
+    } else if (keyword == "comment" || keyword == "obj_info") {
+      continue;
     } else if (keyword == "element") {
       close_element();
-      std::string name;
-      words >> name >> count;
+      std::string name, count_text;
+      words >> name >> count_text;
+      // As written, not converted: a count like 1e55 does not fit an integer.
+      count = std::strtod(count_text.c_str(), nullptr);
+      if (!(count >= 0.0)) count = 0.0;  // NaN or negative: assimp refuses the file itself
       element_bytes = 0.0;
-      claims +=
-          (claims.empty() ? "" : ", ") + std::to_string(static_cast<long long>(count)) + " " + name;
+      claims += (claims.empty() ? "" : ", ") + printable(count_text.substr(0, 24)) + " " +
+                printable(name.substr(0, 24));
     } else if (keyword == "property") {
       std::string type;
       words >> type;
       element_bytes +=
           type == "list" ? (words >> type, property_bytes(type)) : property_bytes(type);
     } else if (keyword == "end_header") {
+      ended = true;
       break;
+    } else {
+      return "line " + std::to_string(lines + 2) + " of its PLY header is not a header line";
     }
   }
+  if (!ended) return "its PLY header has no end_header line";
   close_element();
   std::error_code error;
   const auto size = static_cast<double>(std::filesystem::file_size(path, error));
@@ -291,7 +319,7 @@ __attribute__((visibility("default"))) int owsim_mesh_read(const char* path, ows
                                                            void* sink_context, char* error,
                                                            std::size_t error_size) {
   try {
-    if (const std::string problem = ply_counts_problem(path); !problem.empty()) {
+    if (const std::string problem = ply_header_problem(path); !problem.empty()) {
       copy_error(problem, error, error_size);
       return 1;
     }
