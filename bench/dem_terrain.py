@@ -101,18 +101,21 @@ def bench(owsim, scenario):
     return end_to_end, trace
 
 
-def run(owsim, scenario, out):
+def run(owsim, scenario, out, frames=None):
+    """One `owsim run --outputs d64,summary`: its own peak RSS (MB), set-up and wall time (s), and
+    the frames it flew."""
+    command = [owsim, "run", scenario, "--outputs", "d64,summary", "--out", out, "--quiet"]
+    if frames is not None:
+        command += ["--frames", str(frames)]
     start = time.perf_counter()
-    child = subprocess.Popen([owsim, "run", scenario, "--frames", "30", "--outputs", "d64,summary",
-                              "--out", out, "--quiet"])
+    child = subprocess.Popen(command)
     _, status, usage = os.wait4(child.pid, 0)
     wall = time.perf_counter() - start
     if status != 0:
         sys.exit(f"owsim run {scenario} failed")
     with open(os.path.join(out, "summary.json"), encoding="utf-8") as f:
-        head = f.read(4000)
-    setup = float(re.search(r'"setup_s": ([0-9.e-]+)', head).group(1))
-    return usage.ru_maxrss / 1000.0, setup, wall
+        summary = json.load(f)
+    return usage.ru_maxrss / 1000.0, summary["setup_s"], wall, summary["frames"]
 
 
 HOVER = """name: fine_dem
@@ -142,15 +145,8 @@ def peak_over(owsim, folder, dem):
     path = os.path.join(folder, "hover_" + os.path.basename(dem) + ".yaml")
     with open(path, "w", encoding="utf-8") as f:
         f.write(HOVER.replace("DEM", dem))
-    out = os.path.join(folder, "out_" + os.path.basename(dem))
-    child = subprocess.Popen([owsim, "run", path, "--outputs", "d64,summary", "--out", out,
-                              "--quiet"])
-    _, status, usage = os.wait4(child.pid, 0)
-    if status != 0:
-        sys.exit(f"owsim run {path} failed")
-    with open(os.path.join(out, "summary.json"), encoding="utf-8") as f:
-        setup = float(re.search(r'"setup_s": ([0-9.e-]+)', f.read(4000)).group(1))
-    return usage.ru_maxrss / 1000.0, setup
+    peak, setup, _, _ = run(owsim, path, os.path.join(folder, "out_" + os.path.basename(dem)))
+    return peak, setup
 
 
 def write_in_child(path, km, cell_m):
@@ -174,19 +170,10 @@ def main():
             dem = os.path.join(folder, "corridor_1m.tif")
             size = write_in_child(dem, 6.0, 1.0)
             scenario = scenario_over(folder, dem)
-            out = os.path.join(folder, "out")
-            start = time.perf_counter()
-            child = subprocess.Popen([args.owsim, "run", scenario, "--outputs", "d64,summary",
-                                      "--out", out, "--quiet"])
-            _, status, usage = os.wait4(child.pid, 0)
-            wall = time.perf_counter() - start
-            if status != 0:
-                sys.exit(f"owsim run {scenario} failed")
-            with open(os.path.join(out, "summary.json"), encoding="utf-8") as f:
-                summary = json.load(f)
-            print(f"corridor, whole flight ({summary['frames']} frames) over a 6 × 6 km 1 m DEM "
-                  f"({size / 1e6:.0f} MB): peak {usage.ru_maxrss / 1000.0:.0f} MB, set-up "
-                  f"{summary['setup_s']:.2f} s, wall {wall:.2f} s")
+            peak, setup, wall, frames = run(args.owsim, scenario, os.path.join(folder, "out"))
+            print(f"corridor, whole flight ({frames} frames) over a 6 × 6 km 1 m DEM "
+                  f"({size / 1e6:.0f} MB): peak {peak:.0f} MB, set-up {setup:.2f} s, "
+                  f"wall {wall:.2f} s")
         return
     extents = [float(x) for x in args.extents_km.split(",")]
     with tempfile.TemporaryDirectory(prefix="owsim_dem_bench_") as folder:
@@ -208,13 +195,14 @@ def main():
         print()
         print("| DEM extent (10 m cells) | file MB | cells | set-up s | peak MB | run wall s |")
         print("|---|---|---|---|---|---|")
-        peak, setup, wall = run(args.owsim, flat, os.path.join(folder, "out_flat"))
+        peak, setup, wall, _ = run(args.owsim, flat, os.path.join(folder, "out_flat"), frames=30)
         print(f"| flat ground | – | – | {setup:.3f} | {peak:.0f} | {wall:.2f} |")
         for km in extents:
             dem = os.path.join(folder, f"dem_{km:g}km.tif")
             size = write_in_child(dem, km, 10.0)
             scenario = scenario_over(folder, dem)
-            peak, setup, wall = run(args.owsim, scenario, os.path.join(folder, f"out_{km:g}"))
+            peak, setup, wall, _ = run(args.owsim, scenario, os.path.join(folder, f"out_{km:g}"),
+                                       frames=30)
             cells = int(km * 100) ** 2
             print(f"| {km:g} × {km:g} km | {size / 1e6:.0f} | {cells:,} | {setup:.3f} | "
                   f"{peak:.0f} | {wall:.2f} |")
