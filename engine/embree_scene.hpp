@@ -45,7 +45,7 @@ struct WireSegments {
 };
 
 // A DEM of up to this many posts in reach is traced as triangles, ~10 % faster than Embree's grid
-// primitives but ~200 bytes a post instead of ~15 (README "Terrain from a DEM"): up to 200 MB.
+// primitives but ~250 bytes a post instead of ~15 (README "Terrain from a DEM"): up to 250 MB.
 inline constexpr std::size_t kDemGridFromPosts = 1'000'000;
 
 class EmbreeScene {

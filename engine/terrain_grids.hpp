@@ -1,8 +1,9 @@
 #pragma once
 // A DEM's terrain as Embree grid primitives (RTC_GEOMETRY_TYPE_GRID) over the lattice's own posts
 // (geometry/post_lattice.hpp), instead of a triangle mesh: Embree keeps one float3 per post and
-// builds its compact grid BVH, where a triangle mesh cost ~200 bytes a post (double vertices
-// kept for exact hits, float vertices and indices in Embree, a BVH over two triangles a post).
+// builds its compact grid BVH (~15 bytes a post in all), where a triangle mesh costs ~250 (double
+// vertices kept for exact hits, float vertices and indices in Embree, a BVH over two triangles a
+// post).
 // Embree splits each grid quad along the diagonal from vertex (x + 1, y) to (x, y + 1) — the
 // lattice's own diagonal from post (row, col + 1) to (row + 1, col) — so the float surface is the
 // lattice's triangles.
