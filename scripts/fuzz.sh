@@ -20,6 +20,7 @@ cmake --build "$build" -j "$(nproc)" --target "${targets[@]}"
 # As scripts/sanitize.sh: no scan of dlopen'ed libraries' dynamic TLS (LeakSanitizer's tracer
 # crashes on it now and then with Debian 12's glibc).
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:intercept_tls_get_addr=0}"
+export LSAN_OPTIONS="${LSAN_OPTIONS:-suppressions=$root/fuzz/lsan_suppressions.txt}"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1}"
 failed=()
 for target in "${targets[@]}"; do

@@ -189,14 +189,14 @@ bool read_obj(const std::filesystem::path& path, ModelFolder& folder, Triangles&
 }
 
 // Any other format through assimp: every mesh of the file with its node's transformation
-// applied, polygons split into triangles, points and lines left out.
+// applied, polygons split into triangles (fans: convex polygons, as PLY and glTF hold), points and
+// lines left out.
 bool read_with_assimp(const std::filesystem::path& path, ModelFolder& folder, Triangles& out,
                       std::string& problem) {
   Assimp::Importer importer;
   importer.SetIOHandler(new ConfinedIOSystem(folder));  // the importer owns it
-  const aiScene* scene =
-      importer.ReadFile(path.c_str(), aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                                          aiProcess_PreTransformVertices);
+  const aiScene* scene = importer.ReadFile(
+      path.c_str(), aiProcess_JoinIdenticalVertices | aiProcess_PreTransformVertices);
   if (scene == nullptr) {
     problem = "cannot read the mesh: " + first_line(importer.GetErrorString());
     return false;
@@ -210,19 +210,29 @@ bool read_with_assimp(const std::filesystem::path& path, ModelFolder& folder, Tr
                                      static_cast<double>(vertex.z)});
     }
     for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
+      // Polygons as fans from their first corner (not assimp's Triangulate step, which aborts the
+      // process on some malformed faces: found by fuzz_scene_files); points and lines left out.
       const aiFace& face = mesh->mFaces[f];
-      if (face.mNumIndices != 3) continue;
-      for (unsigned c = 0; c < 3; ++c) out.corners.push_back(first + face.mIndices[c]);
+      for (unsigned c = 2; c < face.mNumIndices; ++c) {
+        for (const unsigned corner : {face.mIndices[0], face.mIndices[c - 1], face.mIndices[c]}) {
+          if (corner >= mesh->mNumVertices) {
+            problem = "cannot read the mesh: a face names a vertex it does not have";
+            return false;
+          }
+          out.corners.push_back(first + corner);
+        }
+      }
     }
   }
   return true;
 }
 
-bool is_obj(const std::filesystem::path& path) {
+// The file name's extension in lower case (".obj").
+std::string extension_of(const std::filesystem::path& path) {
   std::string extension = path.extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return extension == ".obj";
+  return extension;
 }
 
 // `text` with every byte outside printable ASCII as '?': a file's bytes quoted in a message.
@@ -233,8 +243,18 @@ std::string printable(std::string text) {
   return text;
 }
 
+bool is_ply_type(const std::string& type) {
+  for (const char* known :
+       {"char", "uchar", "short", "ushort", "int", "uint", "float", "double", "int8", "uint8",
+        "int16", "uint16", "int32", "uint32", "float32", "float64"}) {
+    if (type == known) return true;
+  }
+  return false;
+}
+
 // A PLY header checked before assimp reads it: its lines must be the format's (assimp 5.2 loops
-// forever on a header whose format line holds other bytes, found by fuzz_scene_files), and its
+// forever on a header whose format line holds other bytes, and leaks on a property of an unknown
+// type; both found by fuzz_scene_files), and its
 // element counts must fit the file's size (a header claiming 4·10⁹ faces in a 200-byte file ran
 // out of memory): every element takes at least 2 bytes in ASCII (a digit and a line end) and its
 // fixed-size properties' bytes in binary (a list at least its count's size). Returns the problem,
@@ -242,7 +262,14 @@ std::string printable(std::string text) {
 std::string ply_header_problem(const std::filesystem::path& path) {
   std::ifstream file(path, std::ios::binary);
   std::string line;
-  if (!std::getline(file, line) || line.rfind("ply", 0) != 0) return "";  // not a PLY
+  const bool has_line = static_cast<bool>(std::getline(file, line));
+  if (!line.empty() && line.back() == '\r') line.pop_back();
+  std::string magic = line.substr(0, 3);
+  std::transform(magic.begin(), magic.end(), magic.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  // assimp takes a .ply file, or one starting "ply" in any case, as a PLY: it must be one.
+  if (extension_of(path) != ".ply" && magic != "ply") return "";
+  if (!has_line || line != "ply") return "its first line is not 'ply', as a PLY file's is";
   const auto property_bytes = [](const std::string& type) -> double {
     if (type == "char" || type == "uchar" || type == "int8" || type == "uint8") return 1;
     if (type == "short" || type == "ushort" || type == "int16" || type == "uint16") return 2;
@@ -260,6 +287,10 @@ std::string ply_header_problem(const std::filesystem::path& path) {
   bool ended = false;
   for (int lines = 0; lines < 10'000 && std::getline(file, line); ++lines) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (printable(line) != line) {
+      return "line " + std::to_string(lines + 2) +
+             " of its PLY header holds bytes that are not text";
+    }
     std::istringstream words(line);
     std::string keyword;
     words >> keyword;
@@ -279,6 +310,11 @@ std::string ply_header_problem(const std::filesystem::path& path) {
       close_element();
       std::string name, count_text;
       words >> name >> count_text;
+      if (name.empty() || count_text.empty() ||
+          count_text.find_first_not_of("0123456789") != std::string::npos) {
+        return "line " + std::to_string(lines + 2) +
+               " of its PLY header is not 'element NAME COUNT'";
+      }
       // As written, not converted: a count like 1e55 does not fit an integer.
       count = std::strtod(count_text.c_str(), nullptr);
       if (!(count >= 0.0)) count = 0.0;  // NaN or negative: assimp refuses the file itself
@@ -286,10 +322,15 @@ std::string ply_header_problem(const std::filesystem::path& path) {
       claims += (claims.empty() ? "" : ", ") + printable(count_text.substr(0, 24)) + " " +
                 printable(name.substr(0, 24));
     } else if (keyword == "property") {
-      std::string type;
+      std::string type, count_type, name;
       words >> type;
-      element_bytes +=
-          type == "list" ? (words >> type, property_bytes(type)) : property_bytes(type);
+      if (type == "list") words >> count_type >> type;
+      words >> name;
+      if (!is_ply_type(type) || (!count_type.empty() && !is_ply_type(count_type)) || name.empty()) {
+        return "line " + std::to_string(lines + 2) +
+               " of its PLY header is not a property of a PLY type";
+      }
+      element_bytes += property_bytes(count_type.empty() ? type : count_type);
     } else if (keyword == "end_header") {
       ended = true;
       break;
@@ -326,8 +367,8 @@ __attribute__((visibility("default"))) int owsim_mesh_read(const char* path, ows
     ModelFolder folder(path);
     Triangles mesh;
     std::string problem;
-    const bool read = is_obj(path) ? read_obj(path, folder, mesh, problem)
-                                   : read_with_assimp(path, folder, mesh, problem);
+    const bool read = extension_of(path) == ".obj" ? read_obj(path, folder, mesh, problem)
+                                                   : read_with_assimp(path, folder, mesh, problem);
     if (!folder.refused().empty()) {
       copy_error("the mesh refers to " + folder.refused() +
                      ", which is not a regular file beside or below it; a mesh reads only those",
