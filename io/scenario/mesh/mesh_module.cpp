@@ -243,13 +243,16 @@ std::string printable(std::string text) {
   return text;
 }
 
-bool is_ply_type(const std::string& type) {
-  for (const char* known :
-       {"char", "uchar", "short", "ushort", "int", "uint", "float", "double", "int8", "uint8",
-        "int16", "uint16", "int32", "uint32", "float32", "float64"}) {
-    if (type == known) return true;
+// The bytes a PLY scalar type takes in a binary file, or 0 for a name that is not a PLY type.
+int ply_type_bytes(const std::string& type) {
+  if (type == "char" || type == "uchar" || type == "int8" || type == "uint8") return 1;
+  if (type == "short" || type == "ushort" || type == "int16" || type == "uint16") return 2;
+  if (type == "int" || type == "uint" || type == "float" || type == "int32" || type == "uint32" ||
+      type == "float32") {
+    return 4;
   }
-  return false;
+  if (type == "double" || type == "float64") return 8;
+  return 0;
 }
 
 // A PLY header checked before assimp reads it: its lines must be the format's (assimp 5.2 loops
@@ -270,12 +273,6 @@ std::string ply_header_problem(const std::filesystem::path& path) {
   // assimp takes a .ply file, or one starting "ply" in any case, as a PLY: it must be one.
   if (extension_of(path) != ".ply" && magic != "ply") return "";
   if (!has_line || line != "ply") return "its first line is not 'ply', as a PLY file's is";
-  const auto property_bytes = [](const std::string& type) -> double {
-    if (type == "char" || type == "uchar" || type == "int8" || type == "uint8") return 1;
-    if (type == "short" || type == "ushort" || type == "int16" || type == "uint16") return 2;
-    if (type == "double" || type == "float64") return 8;
-    return 4;
-  };
   bool ascii = true;
   double least_bytes = 0.0;
   double count = 0.0;
@@ -326,11 +323,12 @@ std::string ply_header_problem(const std::filesystem::path& path) {
       words >> type;
       if (type == "list") words >> count_type >> type;
       words >> name;
-      if (!is_ply_type(type) || (!count_type.empty() && !is_ply_type(count_type)) || name.empty()) {
+      if (ply_type_bytes(type) == 0 || (!count_type.empty() && ply_type_bytes(count_type) == 0) ||
+          name.empty()) {
         return "line " + std::to_string(lines + 2) +
                " of its PLY header is not a property of a PLY type";
       }
-      element_bytes += property_bytes(count_type.empty() ? type : count_type);
+      element_bytes += ply_type_bytes(count_type.empty() ? type : count_type);
     } else if (keyword == "end_header") {
       ended = true;
       break;
