@@ -56,18 +56,20 @@ void BM_TruthRows(benchmark::State& state) {
 }
 BENCHMARK(BM_TruthRows)->Unit(benchmark::kMicrosecond);
 
-// The per-pulse tally truth.csv's returns come from (summary.json's too).
+// The per-pulse tally truth.csv's returns come from: the returns on objects alone (arg 0), or
+// with summary.json's counts (arg 1).
 void BM_TallyFrame(benchmark::State& state) {
   const TruthFixture& f = truth_fixture();
+  const TallyScope scope = state.range(0) == 0 ? TallyScope::object_hits : TallyScope::summary;
   FrameTally tally;
   for (auto _ : state) {
     FlightSummary::tally(named_object_count(f.fixture.scene), f.fixture.traced.pulses,
-                         f.fixture.traced.returns, tally);
+                         f.fixture.traced.returns, tally, scope);
     benchmark::DoNotOptimize(tally.object_hits.data());
   }
   state.SetItemsProcessed(state.iterations() * f.fixture.pulses_per_frame());
 }
-BENCHMARK(BM_TallyFrame)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_TallyFrame)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace owsim

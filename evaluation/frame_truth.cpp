@@ -1,8 +1,10 @@
 #include "evaluation/frame_truth.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "geometry/error.hpp"
 #include "sensor/fiber_layout.hpp"
@@ -159,12 +161,27 @@ FrameTruthModel::ObjectView FrameTruthModel::view_of(std::uint32_t object,
         previous = next;
       }
     };
+    // The nearest point overall in offsets from the sensor (distances do not need the turn to
+    // sensor axes): only the nearest one is turned.
+    double overall2 = kInf;
+    Eigen::Vector3d overall = Eigen::Vector3d::Zero();
     for (const auto& [gap, c] : order) {
-      if (gap * gap >= nearest.overall2) break;
-      for_segments(chunks[c], [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-        nearest.add_overall(a, b);
-      });
+      if (gap * gap >= overall2) break;
+      Eigen::Vector3d previous = points[chunks[c].first] - placement.origin_enu_m;
+      for (std::uint32_t k = chunks[c].first + (chunks[c].first == chunks[c].last ? 0 : 1);
+           k <= chunks[c].last; ++k) {
+        const Eigen::Vector3d next = points[k] - placement.origin_enu_m;
+        const Eigen::Vector3d point =
+            previous + nearest_on_segment(previous, next) * (next - previous);
+        if (point.squaredNorm() < overall2) {
+          overall2 = point.squaredNorm();
+          overall = point;
+        }
+        previous = next;
+      }
     }
+    nearest.overall2 = overall2;
+    nearest.overall_src = src_from_enu * overall;
     if (field.may_hold_sphere(to_src(grid_.sphere(object).centre), grid_.sphere(object).radius_m)) {
       for (const auto& [gap, c] : order) {
         if (gap * gap >= nearest.inside2) break;
@@ -253,35 +270,47 @@ void FrameTruthModel::frame_truth(std::int64_t frame, const FrameSweep& sweep,
 
   // The objects near the sensor and those hit; returns counted per object in a per-thread table
   // (zeroed again below, so it costs the hits, not the scene).
-  thread_local std::vector<std::uint32_t> objects;
+  // (zeroed again below, so it costs the hits, not the scene); the objects marked in a bit set
+  // and taken in index order from it.
+  thread_local std::vector<std::uint32_t> near;
   thread_local std::vector<std::uint32_t> returns_of;
-  objects.clear();
+  thread_local std::vector<std::uint64_t> marked;
+  near.clear();
   if (returns_of.size() < grid_.size()) returns_of.assign(grid_.size(), 0);
-  grid_.objects_near(placement.origin_enu_m.x(), placement.origin_enu_m.y(), range_max_m_, objects);
+  if (marked.size() < (grid_.size() + 63) / 64) marked.assign((grid_.size() + 63) / 64, 0);
+  const auto mark = [&](std::uint32_t object) {
+    marked[object / 64] |= std::uint64_t{1} << (object % 64);
+  };
+  grid_.objects_near(placement.origin_enu_m.x(), placement.origin_enu_m.y(), range_max_m_, near);
+  for (const std::uint32_t object : near) mark(object);
   for (const FrameTally::ObjectHit& hit : hits) {
-    if (hit.object < grid_.size() && returns_of[hit.object]++ == 0) objects.push_back(hit.object);
-  }
-  std::sort(objects.begin(), objects.end());
-  objects.erase(std::unique(objects.begin(), objects.end()), objects.end());
-
-  for (const std::uint32_t object : objects) {
-    const std::uint64_t returns = returns_of[object];
-    returns_of[object] = 0;
-    const ObjectGrid::Sphere& b = grid_.sphere(object);
-    if (returns == 0 && (b.centre - placement.origin_enu_m).norm() - b.radius_m > range_max_m_) {
-      continue;
+    if (hit.object < grid_.size()) {
+      ++returns_of[hit.object];
+      mark(hit.object);
     }
-    const ObjectView view = view_of(object, placement, field);
-    if (returns == 0 && view.range_m > range_max_m_) continue;
-    TruthRow& row = out.rows.emplace_back();
-    row.object = object;
-    row.range_m = view.range_m;
-    row.alpha_deg = view.angles.alpha_deg;
-    row.beta_deg = view.angles.beta_deg;
-    row.in_view = view.in_view;
-    row.returns = returns;
-    const Eigen::Vector3d toward = view.point_enu_m - placement.origin_enu_m;
-    row.closing_speed_mps = view.range_m > 0.0 ? velocity.dot(toward) / view.range_m : 0.0;
+  }
+
+  for (std::size_t word = 0; word < marked.size(); ++word) {
+    for (std::uint64_t bits = std::exchange(marked[word], 0); bits != 0; bits &= bits - 1) {
+      const auto object = static_cast<std::uint32_t>(word * 64 + std::countr_zero(bits));
+      const std::uint64_t returns = returns_of[object];
+      returns_of[object] = 0;
+      const ObjectGrid::Sphere& b = grid_.sphere(object);
+      if (returns == 0 && (b.centre - placement.origin_enu_m).norm() - b.radius_m > range_max_m_) {
+        continue;
+      }
+      const ObjectView view = view_of(object, placement, field);
+      if (returns == 0 && view.range_m > range_max_m_) continue;
+      TruthRow& row = out.rows.emplace_back();
+      row.object = object;
+      row.range_m = view.range_m;
+      row.alpha_deg = view.angles.alpha_deg;
+      row.beta_deg = view.angles.beta_deg;
+      row.in_view = view.in_view;
+      row.returns = returns;
+      const Eigen::Vector3d toward = view.point_enu_m - placement.origin_enu_m;
+      row.closing_speed_mps = view.range_m > 0.0 ? velocity.dot(toward) / view.range_m : 0.0;
+    }
   }
 }
 

@@ -38,22 +38,43 @@ void FlightSummary::restore(const FlightSummaryCheckpoint& from) {
 }
 
 void FlightSummary::tally(std::size_t object_count, std::span<const Pulse> pulses,
-                          std::span<const PulseReturns> returns, FrameTally& out) {
+                          std::span<const PulseReturns> returns, FrameTally& out,
+                          TallyScope scope) {
   out.pulses = pulses.size();
   out.returns_by_class.fill(0);
   out.second_returns = 0;
   out.object_hits.clear();
+  const auto add_object_hit = [&](std::size_t k, int r) {
+    const PulseReturns& pulse_returns = returns[k];
+    const Return& ret = pulse_returns.returns[r];
+    const bool through_fog =
+        r == 1 && pulse_returns.returns[0].surface == static_cast<std::uint8_t>(SurfaceClass::fog);
+    out.object_hits.push_back(
+        {ret.object_index, through_fog ? 1u : 0u, pulses[k].time_s, ret.true_range_m});
+  };
+  if (scope == TallyScope::object_hits) {
+    // Without a branch on a pulse's return count (unpredictable) until a return on an object
+    // (rare); the entries past a pulse's count hold stale values, so each test is masked by it.
+    for (std::size_t k = 0; k < returns.size(); ++k) {
+      const PulseReturns& pulse_returns = returns[k];
+      const bool first =
+          (pulse_returns.count >= 1) & (pulse_returns.returns[0].object_index < object_count);
+      const bool second =
+          (pulse_returns.count >= 2) & (pulse_returns.returns[1].object_index < object_count);
+      if (first | second) [[unlikely]] {
+        if (first) add_object_hit(k, 0);
+        if (second) add_object_hit(k, 1);
+      }
+    }
+    return;
+  }
   for (std::size_t k = 0; k < returns.size(); ++k) {
     const PulseReturns& pulse_returns = returns[k];
     if (pulse_returns.count >= 2) ++out.second_returns;
     for (int r = 0; r < pulse_returns.count; ++r) {
       const Return& ret = pulse_returns.returns[r];
       ++out.returns_by_class[std::min<std::size_t>(ret.surface, kSurfaceClassCount - 1)];
-      if (ret.object_index >= object_count) continue;  // the terrain, fog
-      const bool through_fog =
-          r == 1 && pulse_returns.returns[0].surface == static_cast<std::uint8_t>(SurfaceClass::fog);
-      out.object_hits.push_back({ret.object_index, through_fog ? 1u : 0u, pulses[k].time_s,
-                                 ret.true_range_m});
+      if (ret.object_index < object_count) add_object_hit(k, r);  // else the terrain, fog
     }
   }
 }

@@ -88,6 +88,10 @@ struct FrameTally {
   }
 };
 
+// What a frame's tally counts: all summary.json reports, or the returns on objects alone (all
+// truth.csv needs; the class and second-return counts are then left at zero).
+enum class TallyScope { summary, object_hits };
+
 class FlightSummary {
  public:
   // Tallies `object_count` objects (the scene's conductors, then cylinders, in object-index
@@ -97,7 +101,8 @@ class FlightSummary {
   // One frame's returns tallied, for a scene of `object_count` objects (returns on an index at
   // or past it are the ground's); any thread.
   static void tally(std::size_t object_count, std::span<const Pulse> pulses,
-                    std::span<const PulseReturns> returns, FrameTally& out);
+                    std::span<const PulseReturns> returns, FrameTally& out,
+                    TallyScope scope = TallyScope::summary);
   // Adds one frame's tally (frames must come in order). Throws owsim::Error for a hit on an
   // object index this summary does not tally.
   void add_frame(std::int64_t frame, const FrameTally& tally);

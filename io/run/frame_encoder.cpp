@@ -75,8 +75,9 @@ void FrameEncoder::encode_pulses(const FrameView& frame, int begin, int end,
     const auto count = static_cast<std::size_t>(end - begin);
     // The tally feeds summary.json and truth.csv: without them, the block's tally stays empty.
     const std::size_t tallied = wants(OutputKind::summary) || wants(OutputKind::truth) ? count : 0;
-    FlightSummary::tally(object_count_, frame.pulses.subspan(first, tallied),
-                         frame.returns.subspan(first, tallied), block.tally);
+    FlightSummary::tally(
+        object_count_, frame.pulses.subspan(first, tallied), frame.returns.subspan(first, tallied),
+        block.tally, wants(OutputKind::summary) ? TallyScope::summary : TallyScope::object_hits);
     if (words) {
       const auto block_pulses = frame.pulses.subspan(first, count);
       const auto block_returns = frame.returns.subspan(first, count);
