@@ -11,6 +11,7 @@
 
 #include "geometry/geodetic_frame.hpp"
 #include "io/trajectory/ardupilot_log_reader.hpp"
+#include "owsim/simulation.hpp"
 #include "sensor/trajectory.hpp"
 
 namespace owsim {
@@ -131,6 +132,32 @@ TEST_F(RealFlight, PositionsPassThroughEveryGpsFix) {
   }
   EXPECT_LT(largest_step_m, 1.0);
   EXPECT_GT(largest_step_m, 0.1);  // the aircraft does move
+}
+
+// A scenario flies the log as its trajectory (format: ardupilot): the Simulation's trajectory is
+// the reader's (smoothing off: window 1), its clock from the log's first record.
+TEST_F(RealFlight, AScenarioFliesTheLogAsItsTrajectory) {
+  const Geodetic first = log_->fixes.front().position;
+  const std::string yaml =
+      "origin: {lat: " + std::to_string(first.lat_deg) + ", lon: " + std::to_string(first.lon_deg) +
+      ", h: " + std::to_string(first.h_m) +
+      "}\ntrajectory: {file: WingFlight1.log, format: ardupilot, start_s: 20, duration_s: 2, "
+      "smoothing: {window: 1, degree: 0}}\n"
+      "scene: {terrain: none}\n";
+  const Simulation simulation = Simulation::from_yaml(
+      yaml, std::filesystem::path(kLog).parent_path() / "real.yaml");  // anchors the log's name
+  EXPECT_EQ(simulation.frame_count(), 6);
+  const LocalFrame frame(simulation.scenario().origin);
+  TrajectoryOptions unsmoothed;
+  unsmoothed.smoothing = SmoothingParams{1, 0};
+  const Trajectory expected(to_local(log_->records, frame), frame, unsmoothed);
+  for (const double t : {20.0, 21.0, 22.0}) {
+    EXPECT_LT((simulation.setup().trajectory.pose_at(t).position_enu_m -
+               expected.pose_at(t).position_enu_m)
+                  .norm(),
+              1e-6);
+  }
+  EXPECT_NO_THROW((void)simulation.simulate_frame(0));
 }
 
 }  // namespace

@@ -37,7 +37,8 @@ struct TrajectorySpec {
 
   // -- file: a recorded trajectory (SENSOR-SPEC §5)
   std::filesystem::path file;  // resolved against the scenario file's folder
-  // hellsim | csv | sbet; without a `format` key, csv for a .csv file, else hellsim
+  // hellsim | csv | sbet | ardupilot (an ArduPilot text log: GPS and ATT lines); without a
+  // `format` key, csv for a .csv file, else hellsim
   std::string format = "hellsim";
   double tick_s = 0.0005;  // HellSim Time-Tag weight, seconds per count
   // The file's heading is magnetic: true heading = magnetic + magnetic_variation_deg (§5).

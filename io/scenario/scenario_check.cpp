@@ -187,9 +187,9 @@ void check_trajectory(const TrajectorySpec& trajectory) {
     if (trajectory.file.empty())
       throw input_error("trajectory.file", "expected a file name, got ''");
     if (trajectory.format != "hellsim" && trajectory.format != "csv" &&
-        trajectory.format != "sbet") {
+        trajectory.format != "sbet" && trajectory.format != "ardupilot") {
       throw input_error("trajectory.format",
-                        "expected one of hellsim, csv, sbet, got '" + trajectory.format + "'");
+                        "expected one of hellsim, csv, sbet, ardupilot, got '" + trajectory.format + "'");
     }
     require_positive(trajectory.tick_s, "trajectory.tick_s");
     if (!(std::abs(trajectory.magnetic_variation_deg) <= 180.0)) {

@@ -315,7 +315,7 @@ class ScenarioReader {
     trajectory.file = input_file(file);
     add_input(trajectory.file, {});
     if (const auto format = map.get("format")) {
-      trajectory.format = format->one_of({"hellsim", "csv", "sbet"});
+      trajectory.format = format->one_of({"hellsim", "csv", "sbet", "ardupilot"});
     } else {
       trajectory.format = trajectory.file.extension() == ".csv" ? "csv" : "hellsim";
     }

@@ -1,6 +1,7 @@
 #include "io/trajectory/trajectory_loader.hpp"
 
 #include "geometry/error.hpp"
+#include "io/trajectory/ardupilot_log_reader.hpp"
 #include "io/trajectory/hellsim_reader.hpp"
 #include "io/trajectory/sbet_reader.hpp"
 #include "io/trajectory/trajectory_csv_reader.hpp"
@@ -25,6 +26,7 @@ NavTrack load_nav_track(const Scenario& scenario, const LocalFrame& frame) {
   }
   if (spec.format == "csv") return to_local(read_trajectory_csv(path), frame);
   if (spec.format == "sbet") return to_local(read_sbet(path), frame);
+  if (spec.format == "ardupilot") return to_local(read_ardupilot_log(path).records, frame);
   throw input_error(scenario.path.string() + ": trajectory.format",
                     "unknown trajectory format '" + spec.format + "'");
 }
