@@ -19,5 +19,6 @@ void add_sweep_command(CLI::App& app, CommandResult& result);
 void add_view_command(CLI::App& app, CommandResult& result);
 void add_pd_command(CLI::App& app, CommandResult& result);
 void add_score_command(CLI::App& app, CommandResult& result);
+void add_studio_command(CLI::App& app, CommandResult& result);
 
 }  // namespace owsim::cli

@@ -29,6 +29,9 @@ pkg_check_modules(GDAL REQUIRED IMPORTED_TARGET GLOBAL gdal)
 # (triangle meshes) links them.
 pkg_check_modules(ASSIMP REQUIRED IMPORTED_TARGET GLOBAL assimp)
 pkg_check_modules(TINYOBJLOADER REQUIRED IMPORTED_TARGET GLOBAL tinyobjloader_double)
+# owsim studio's HTTP server (studio/): Debian's compiled cpp-httplib, with the flags it was built
+# with (they change its classes' layout).
+pkg_check_modules(HTTPLIB REQUIRED IMPORTED_TARGET GLOBAL cpp-httplib)
 
 # MPI (Debian's OpenMPI) is optional: with it, libowsim_mpi.so is built and `mpirun … owsim` runs
 # distributed (distributed/); without it everything else builds and owsim runs on one machine.

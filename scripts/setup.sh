@@ -19,6 +19,7 @@ packages=(
   zlib1g-dev                       # the report page's data (owsim view, io/report/)
   chromium                         # the report page's browser test (tests/web/)
   strace                           # scenarios open only their own files (tests/scenario_files_strace.py)
+  libcpp-httplib-dev               # owsim studio's local HTTP server (studio/)
 )
 # Node.js and npm bundle the report page's script at build time (web/); Debian's packages unless
 # the machine already has a node and npm of its own.

@@ -775,8 +775,9 @@ TEST(ScenarioLoaderErrors, TrajectorySources) {
                 "magnetic + variation)");
   EXPECT_EQ(error_at(head + "  file: f.txt\n  magnetic_variation_deg: 2\n"),
             where + "4: trajectory.magnetic_variation_deg: applies only with heading: magnetic");
-  EXPECT_EQ(error_at(head + "  file: f.txt\n  format: gpx\n"),
-            where + "4: trajectory.format: expected one of hellsim | csv | sbet, got 'gpx'");
+  EXPECT_EQ(
+      error_at(head + "  file: f.txt\n  format: gpx\n"),
+      where + "4: trajectory.format: expected one of hellsim | csv | sbet | ardupilot, got 'gpx'");
   EXPECT_EQ(error_at(head + "  file: f.txt\n  format: csv\n  tick_s: 0.1\n"),
             where + "5: trajectory.tick_s: applies only to format hellsim");
   EXPECT_EQ(error_at(head + "  file: f.txt\n  smoothing: {window: 8}\n"),

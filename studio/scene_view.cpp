@@ -1,0 +1,174 @@
+#include "studio/scene_view.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "evaluation/frame_truth.hpp"
+#include "geometry/error.hpp"
+#include "sensor/mounting.hpp"
+#include "sensor/scan_pattern.hpp"
+
+namespace owsim::studio {
+namespace {
+
+using nlohmann::json;
+
+// [lat, lon] of a local ENU position, to the centimetre.
+json lat_lon(const LocalFrame& frame, const Eigen::Vector3d& enu_m) {
+  const Geodetic point = frame.geodetic_from_enu(enu_m);
+  const auto round = [](double deg) { return std::round(deg * 1e7) / 1e7; };
+  return json::array({round(point.lat_deg), round(point.lon_deg)});
+}
+
+// The ground's height under (e, n), or null where the terrain has none (off a DEM).
+json ground_at(const Terrain& terrain, double e_m, double n_m) {
+  try {
+    return terrain.height_at(e_m, n_m);
+  } catch (const Error&) {
+    return nullptr;
+  }
+}
+
+json track_view(const FlightSetup& setup, double step_s) {
+  const Trajectory& trajectory = setup.trajectory;
+  const LocalFrame& frame = setup.local_frame;
+  const Scenario& scenario = setup.scenario;
+  // The field's horizontal fan, frame 0's sweep at α = 0, out to the counter's timeout range.
+  const ScanField field = frame_field(scenario.scan, frame_sweep(scenario.scan, scenario.seed, 0));
+  json t = json::array(), points = json::array(), h = json::array(), agl = json::array(),
+       speed = json::array(), heading = json::array(), fans = json::array();
+  const double start = trajectory.start_s();
+  const double end = trajectory.end_s();
+  const auto samples = static_cast<std::int64_t>(std::floor((end - start) / step_s)) + 1;
+  for (std::int64_t k = 0; k < samples; ++k) {
+    const double time = std::min(end, start + static_cast<double>(k) * step_s);
+    const Pose pose = trajectory.pose_at(time);
+    const Eigen::Vector3d& at = pose.position_enu_m;
+    const double before = std::max(start, time - 0.1), after = std::min(end, time + 0.1);
+    const double ground_speed =
+        after > before
+            ? (trajectory.pose_at(after).position_enu_m - trajectory.pose_at(before).position_enu_m)
+                      .norm() /
+                  (after - before)
+            : 0.0;
+    t.push_back(std::round(time * 1e3) / 1e3);
+    points.push_back(lat_lon(frame, at));
+    h.push_back(std::round(frame.geodetic_from_enu(at).h_m * 100) / 100);
+    const json ground = ground_at(setup.scene.terrain, at.x(), at.y());
+    agl.push_back(ground.is_null() ? json(nullptr)
+                                   : json(std::round((at.z() - ground.get<double>()) * 100) / 100));
+    speed.push_back(std::round(ground_speed * 100) / 100);
+    heading.push_back(std::round(pose.attitude.heading_deg * 10) / 10);
+    const SensorPlacement placement = sensor_placement(pose, scenario.mount, scenario.scan.model);
+    json fan = json::array({lat_lon(frame, placement.origin_enu_m)});
+    for (int edge = 0; edge <= 4; ++edge) {
+      const double beta = field.beta_min_deg + (field.beta_max_deg - field.beta_min_deg) * edge / 4;
+      const Eigen::Vector3d ray_src = src_from_arc(arc_unit_ray(0.0, beta));
+      fan.push_back(lat_lon(
+          frame, placement.origin_enu_m + field.range_max_m * (placement.enu_from_src * ray_src)));
+    }
+    fans.push_back(std::move(fan));
+  }
+  return {{"t", t},         {"points", points},
+          {"h", h},         {"agl", agl},
+          {"speed", speed}, {"heading", heading},
+          {"fov", fans},    {"start_s", start},
+          {"end_s", end},   {"range_m", field.range_max_m}};
+}
+
+json objects_view(const FlightSetup& setup) {
+  const LocalFrame& frame = setup.local_frame;
+  const Scene& scene = setup.scene;
+  json objects = json::array();
+  for (const Conductor& conductor : scene.conductors) {
+    json line = json::array();
+    json heights = json::array();
+    // Every vertex would be thousands on a long span: the map needs a few dozen.
+    const std::size_t stride = std::max<std::size_t>(1, conductor.points_enu_m.size() / 48);
+    for (std::size_t k = 0; k < conductor.points_enu_m.size(); k += stride) {
+      line.push_back(lat_lon(frame, conductor.points_enu_m[k]));
+      heights.push_back(std::round(conductor.points_enu_m[k].z() * 100) / 100);
+    }
+    line.push_back(lat_lon(frame, conductor.points_enu_m.back()));
+    heights.push_back(std::round(conductor.points_enu_m.back().z() * 100) / 100);
+    objects.push_back({{"id", conductor.id}, {"class", "wire"}, {"line", line}, {"u", heights}});
+  }
+  for (const Cylinder& cylinder : scene.cylinders) {
+    objects.push_back({{"id", cylinder.id},
+                       {"class", to_string(cylinder.surface)},
+                       {"at", lat_lon(frame, cylinder.base_enu_m)},
+                       {"radius_m", cylinder.radius_m},
+                       {"height_m", cylinder.height_m}});
+  }
+  for (const MeshObject& mesh : scene.meshes) {
+    Eigen::AlignedBox3d box;
+    for (const Eigen::Vector3d& vertex : mesh.mesh.vertices) box.extend(vertex);
+    json outline = json::array();
+    for (const auto& corner : {Eigen::Vector2d(box.min().x(), box.min().y()),
+                               Eigen::Vector2d(box.max().x(), box.min().y()),
+                               Eigen::Vector2d(box.max().x(), box.max().y()),
+                               Eigen::Vector2d(box.min().x(), box.max().y())}) {
+      outline.push_back(lat_lon(frame, {corner.x(), corner.y(), box.min().z()}));
+    }
+    objects.push_back({{"id", mesh.id}, {"class", to_string(mesh.surface)}, {"outline", outline}});
+  }
+  for (const FogVolume& fog : scene.fog) {
+    json entry = {{"id", fog.id}, {"class", "fog"}};
+    if (fog.shape == FogShape::box) {
+      json outline = json::array();
+      for (const auto& corner : {Eigen::Vector2d(fog.box.min().x(), fog.box.min().y()),
+                                 Eigen::Vector2d(fog.box.max().x(), fog.box.min().y()),
+                                 Eigen::Vector2d(fog.box.max().x(), fog.box.max().y()),
+                                 Eigen::Vector2d(fog.box.min().x(), fog.box.max().y())}) {
+        outline.push_back(lat_lon(frame, {corner.x(), corner.y(), fog.box.min().z()}));
+      }
+      entry["outline"] = outline;
+    }
+    objects.push_back(std::move(entry));
+  }
+  return objects;
+}
+
+// What the scenario declares, where the map's handles go: spans by their supports, poles and
+// trees by their bases (the keys a drag rewrites).
+json handles_view(const FlightSetup& setup) {
+  const LocalFrame& frame = setup.local_frame;
+  const SceneSpec& spec = setup.scenario.scene;
+  json spans = json::array(), poles = json::array(), trees = json::array();
+  const auto ground = [&](const Eigen::Vector2d& en) {
+    const json u = ground_at(setup.scene.terrain, en.x(), en.y());
+    return Eigen::Vector3d(en.x(), en.y(), u.is_null() ? 0.0 : u.get<double>());
+  };
+  for (const SpanSpec& span : spec.spans) {
+    spans.push_back({{"id", span.id},
+                     {"from", lat_lon(frame, ground(span.from_en))},
+                     {"to", lat_lon(frame, ground(span.to_en))}});
+  }
+  for (const Cylinder& pole : spec.poles) {
+    poles.push_back({{"id", pole.id}, {"at", lat_lon(frame, pole.base_enu_m)}});
+  }
+  for (const Cylinder& tree : spec.trees) {
+    trees.push_back({{"id", tree.id}, {"at", lat_lon(frame, tree.base_enu_m)}});
+  }
+  return {{"spans", spans}, {"poles", poles}, {"trees", trees}};
+}
+
+}  // namespace
+
+nlohmann::json scene_view(const Simulation& simulation, double step_s) {
+  const FlightSetup& setup = simulation.setup();
+  if (!(step_s > 0.0)) throw Error("studio: the track's sample step must be positive");
+  const Geodetic& origin = setup.scenario.origin;
+  json view;
+  view["origin"] = {{"lat", origin.lat_deg}, {"lon", origin.lon_deg}, {"h", origin.h_m}};
+  view["track"] = track_view(setup, step_s);
+  view["segment"] = {{"start_s", setup.scenario.trajectory.start_s},
+                     {"frames", setup.frames},
+                     {"end_s", simulation.frame_end_s(setup.frames - 1)}};
+  view["objects"] = objects_view(setup);
+  view["handles"] = handles_view(setup);
+  return view;
+}
+
+}  // namespace owsim::studio

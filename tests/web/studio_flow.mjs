@@ -1,0 +1,148 @@
+// `owsim studio` as a user works with it, in headless Chromium (Debian's, driven by the pinned
+// playwright-core of web/): opened on a recorded flight, a 60 s segment selected, a span placed
+// across the track by two clicks, a bad diameter refused beside its field and mended, Fly with
+// its progress, wire returns in the report, Save. No console errors; no request leaves the
+// studio's own address. Screenshots in SHOT_DIR.
+//   node tests/web/studio_flow.mjs URL SHOT_DIR
+// Prints one JSON line of what it saw; exits non-zero with the failed checks listed.
+import { createRequire } from 'node:module';
+import { mkdirSync } from 'node:fs';
+import { dirname, join } from 'node:path';
+import { fileURLToPath } from 'node:url';
+
+const here = dirname(fileURLToPath(import.meta.url));
+const require = createRequire(join(here, '..', '..', 'web', 'package.json'));
+const { chromium } = require('playwright-core');
+
+const [address, shotDir] = process.argv.slice(2);
+mkdirSync(shotDir, { recursive: true });
+const origin = new URL(address).origin;
+const failures = [];
+const check = (ok, what) => { if (!ok) failures.push(what); };
+
+const browser = await chromium.launch({
+  executablePath: process.env.OWSIM_CHROMIUM || '/usr/bin/chromium',
+  args: ['--no-sandbox', '--disable-gpu', '--disable-background-networking',
+    '--disable-component-update', '--disable-sync', '--no-first-run', '--disable-quic'],
+});
+const page = await browser.newPage({ viewport: { width: 1400, height: 900 } });
+const consoleErrors = [];
+const foreign = [];
+page.on('console', (m) => { if (m.type() === 'error') consoleErrors.push(m.text()); });
+page.on('pageerror', (e) => consoleErrors.push(String(e)));
+page.on('request', (r) => {
+  const url = r.url();
+  if (!url.startsWith(origin) && !url.startsWith('data:') && !url.startsWith('blob:') && !url.startsWith('about:')) foreign.push(url);
+});
+
+page.on('console', (m) => { if (process.env.STUDIO_DEBUG) console.error(`[${m.type()}] ${m.text()}`); });
+
+// On any step that fails: a screenshot, the document and the console, to see why.
+async function explain(error) {
+  console.error(`studio_flow: ${error.message}`);
+  try {
+    await page.screenshot({ path: join(shotDir, 'failure.png') });
+    console.error(await page.evaluate(() => window.owsimStudio?.doc?.text()));
+    console.error(`problem: ${await page.locator('#problem').innerText()}`);
+  } catch {}
+  console.error(`console: ${consoleErrors.join(' | ')}`);
+  process.exit(1);
+}
+
+let track;
+let spans;
+let wires;
+try {
+await page.goto(address);
+await page.waitForSelector('body[data-ready="true"]', { timeout: 60000 });
+track = await page.evaluate(() => {
+  const t = window.owsimStudio.view.track;
+  return { start: t.start_s, end: t.end_s, samples: t.t.length };
+});
+check(track.end - track.start > 100, `the recorded flight is ${track.end - track.start} s long`);
+
+// 1. A 60 s segment: 40 s to 100 s, set on the two sliders as a user would (keyboard).
+const setSlider = async (id, value) => {
+  await page.locator(`#${id}`).evaluate((input, v) => {
+    input.value = String(v);
+    input.dispatchEvent(new Event('input', { bubbles: true }));
+    input.dispatchEvent(new Event('change', { bubbles: true }));
+  }, value);
+};
+await setSlider('seg-end', 100);
+await page.waitForFunction(() => /duration_s: 100\b/.test(window.owsimStudio.doc.text()), null, { timeout: 10000 });
+await setSlider('seg-start', 40);
+await page.waitForFunction(() => /duration_s: 60\b/.test(window.owsimStudio.doc.text()), null, { timeout: 10000 });
+await setSlider('cursor', 70);
+
+// 2. A span across the track at 70 s: two clicks 120 m either side of it, across its heading.
+const clicks = await page.evaluate(() => {
+  const studio = window.owsimStudio;
+  const t = studio.view.track;
+  let k = 0;
+  while (k + 1 < t.t.length && t.t[k] < 70) k += 1;
+  const [lat, lon] = t.points[k];
+  const [lat2, lon2] = t.points[Math.min(t.t.length - 1, k + 4)];
+  const m = 111320;
+  const de = (lon2 - lon) * m * Math.cos((lat * Math.PI) / 180);
+  const dn = (lat2 - lat) * m;
+  const length = Math.hypot(de, dn) || 1;
+  const across = [-dn / length, de / length];  // unit vector across the heading (east, north)
+  const at = (s) => [lat + (s * across[1]) / m, lon + (s * across[0]) / (m * Math.cos((lat * Math.PI) / 180))];
+  const map = studio.map.map;
+  map.setView([lat, lon], 16, { animate: false });
+  const box = document.getElementById('map').getBoundingClientRect();
+  return [at(-120), at(120)].map(([a, b]) => {
+    const p = map.latLngToContainerPoint([a, b]);
+    return { x: box.left + p.x, y: box.top + p.y };
+  });
+});
+await page.waitForTimeout(300);
+await page.locator('#tools button[data-tool="span"]').click();
+await page.mouse.click(clicks[0].x, clicks[0].y);
+await page.waitForTimeout(200);
+await page.mouse.click(clicks[1].x, clicks[1].y);
+await page.waitForSelector('input[name="scene.spans[0].conductor.diameter_mm"]', { timeout: 10000 });
+spans = await page.evaluate(() => window.owsimStudio.doc.list(['scene', 'spans']).length);
+check(spans === 1, `${spans} spans after two clicks`);
+
+// 3. A bad diameter: the loader's message beside its field; then a good one.
+const diameter = page.locator('input[name="scene.spans[0].conductor.diameter_mm"]');
+await diameter.fill('-3');
+await diameter.press('Tab');
+await page.waitForFunction(() => document.querySelector('.field.bad .field-problem')?.textContent, null, { timeout: 10000 });
+const beside = await page.locator('.field.bad .field-problem').innerText();
+check(/must be in \[1, 200\] mm/.test(beside), `the bad diameter's message: '${beside}'`);
+await page.screenshot({ path: join(shotDir, 'studio_problem.png') });
+await diameter.fill('30');
+await diameter.press('Tab');
+await page.waitForFunction(() => !document.querySelector('.field.bad'), null, { timeout: 10000 });
+await page.screenshot({ path: join(shotDir, 'studio_span.png') });
+
+// 4. Fly: progress, then the report with wire returns.
+await page.locator('#fly').click();
+await page.waitForSelector('#report-pane:not([hidden])', { timeout: 600000 });
+const frame = page.frameLocator('#report');
+await frame.locator('body[data-ready="1"]').waitFor({ timeout: 60000 });
+const facts = await frame.locator('#summary table.facts').innerText();
+wires = Number((/wire ([\d,]+)/.exec(facts)?.[1] ?? '0').replace(/,/g, ''));
+check(wires > 0, `wire returns in the report: ${wires}`);
+await page.screenshot({ path: join(shotDir, 'studio_report.png') });
+await page.locator('#close-report').click();
+
+// 5. Save.
+await page.locator('#save').click();
+await page.waitForFunction(() => /saved/.test(document.querySelector('#status').textContent), null, { timeout: 10000 });
+
+} catch (error) {
+  await explain(error);
+}
+
+check(consoleErrors.length === 0, `console errors: ${consoleErrors.join(' | ')}`);
+check(foreign.length === 0, `requests leaving the studio: ${foreign.join(' ')}`);
+await browser.close();
+console.log(JSON.stringify({ track, spans, wires, consoleErrors: consoleErrors.length, foreign: foreign.length }));
+if (failures.length > 0) {
+  console.error(`studio_flow: ${failures.length} check(s) failed:\n  ${failures.join('\n  ')}`);
+  process.exit(1);
+}

@@ -1,0 +1,110 @@
+// The offline map: no tile server — the track coloured by time, the selected segment, the scene's
+// objects as built (wires, poles, trees, mesh and fog outlines), the aircraft and its field of
+// view at the time cursor, a scale, a north arrow and the pointer's WGS-84 and (approximate)
+// ENU coordinates.
+import L from 'leaflet';
+
+const EARTH_RADIUS_M = 6378137;
+
+// A colour for position s ∈ [0, 1] along the flight (blue → green → yellow).
+export function timeColour(s) {
+  const stops = [[49, 54, 149], [69, 117, 180], [116, 173, 209], [171, 217, 233], [254, 224, 144], [253, 174, 97]];
+  const x = Math.min(1, Math.max(0, s)) * (stops.length - 1);
+  const k = Math.min(stops.length - 2, Math.floor(x));
+  const f = x - k;
+  const c = stops[k].map((v, i) => Math.round(v + f * (stops[k + 1][i] - v)));
+  return `rgb(${c[0]},${c[1]},${c[2]})`;
+}
+
+const CLASS_COLOURS = { wire: '#c0392b', pole: '#6e4b2a', tree: '#2e7d32', building: '#555', fog: '#7f8c8d' };
+
+export class TrackMap {
+  constructor(element) {
+    this.map = L.map(element, { zoomSnap: 0.25, attributionControl: false, preferCanvas: false });
+    this.map.setView([0, 0], 2);
+    L.control.scale({ metric: true, imperial: false }).addTo(this.map);
+    const North = L.Control.extend({
+      onAdd() {
+        const div = L.DomUtil.create('div', 'north-arrow');
+        div.textContent = 'N ↑';
+        div.title = 'north is up';
+        return div;
+      },
+    });
+    new North({ position: 'topright' }).addTo(this.map);
+    this.trackLayer = L.layerGroup().addTo(this.map);
+    this.objectLayer = L.layerGroup().addTo(this.map);
+    this.cursorLayer = L.layerGroup().addTo(this.map);
+    this.origin = null;
+    this.fitted = false;
+  }
+
+  onPointer(callback) {
+    this.map.on('mousemove', (event) => callback(event.latlng, this.enuOf(event.latlng)));
+  }
+
+  // East/north metres from the origin on a sphere: for the pointer's readout only (the scenario
+  // itself stores what the user placed in WGS-84, converted exactly by the server).
+  enuOf(latlng) {
+    if (!this.origin) return null;
+    const lat0 = (this.origin.lat * Math.PI) / 180;
+    const e = ((latlng.lng - this.origin.lon) * Math.PI / 180) * EARTH_RADIUS_M * Math.cos(lat0);
+    const n = ((latlng.lat - this.origin.lat) * Math.PI / 180) * EARTH_RADIUS_M;
+    return { e, n };
+  }
+
+  show(view, segment) {
+    this.origin = view.origin;
+    this.view = view;
+    this.trackLayer.clearLayers();
+    this.objectLayer.clearLayers();
+    const track = view.track;
+    const count = track.t.length;
+    const span = Math.max(1e-9, track.end_s - track.start_s);
+    for (let k = 0; k + 1 < count; k += 1) {
+      const inSegment = track.t[k] >= segment.start && track.t[k + 1] <= segment.end;
+      L.polyline([track.points[k], track.points[k + 1]], {
+        color: timeColour((track.t[k] - track.start_s) / span),
+        weight: inSegment ? 6 : 2,
+        opacity: inSegment ? 1 : 0.7,
+        interactive: false,
+      }).addTo(this.trackLayer);
+    }
+    for (const object of view.objects) this.drawObject(object);
+    if (!this.fitted && count > 0) {
+      this.map.fitBounds(L.latLngBounds(track.points), { padding: [20, 20] });
+      this.fitted = true;
+    }
+  }
+
+  drawObject(object) {
+    const colour = CLASS_COLOURS[object.class] ?? '#8e44ad';
+    const tooltip = `${object.id} (${object.class})`;
+    if (object.line) {
+      L.polyline(object.line, { color: colour, weight: 2 }).bindTooltip(tooltip).addTo(this.objectLayer);
+    } else if (object.at) {
+      L.circle(object.at, { radius: Math.max(object.radius_m, 0.5), color: colour, weight: 2 })
+        .bindTooltip(tooltip)
+        .addTo(this.objectLayer);
+    } else if (object.outline) {
+      L.polygon(object.outline, { color: colour, weight: 1, fillOpacity: 0.1 }).bindTooltip(tooltip).addTo(this.objectLayer);
+    }
+  }
+
+  // The aircraft and the sensor's field at track sample k.
+  showCursor(k) {
+    this.cursorLayer.clearLayers();
+    const track = this.view?.track;
+    if (!track || k < 0 || k >= track.t.length) return;
+    L.polygon(track.fov[k], { color: '#e67e22', weight: 1, fillOpacity: 0.15, interactive: false }).addTo(this.cursorLayer);
+    L.circleMarker(track.points[k], { radius: 6, color: '#000', fillColor: '#f1c40f', fillOpacity: 1, interactive: false }).addTo(this.cursorLayer);
+  }
+
+  highlight(id) {
+    this.objectLayer.eachLayer((layer) => {
+      const tooltip = layer.getTooltip?.();
+      const hit = tooltip && tooltip.getContent().startsWith(`${id}`);
+      if (layer.setStyle) layer.setStyle({ weight: hit ? 5 : 2 });
+    });
+  }
+}
