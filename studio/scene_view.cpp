@@ -130,6 +130,39 @@ json objects_view(const FlightSetup& setup) {
   return objects;
 }
 
+// A span's cross-section for the form: the ground and each of its conductors (ids "<span>/<n>")
+// as (distance along the span from its first support, height) pairs, metres.
+json span_section(const FlightSetup& setup, const SpanSpec& span) {
+  const Eigen::Vector2d axis = span.to_en - span.from_en;
+  const double length = axis.norm();
+  const Eigen::Vector2d unit =
+      length > 0.0 ? Eigen::Vector2d(axis / length) : Eigen::Vector2d::UnitX();
+  json ground = json::array();
+  constexpr int kSamples = 64;
+  for (int k = 0; k <= kSamples; ++k) {
+    const double d = length * k / kSamples;
+    const Eigen::Vector2d at = span.from_en + d * unit;
+    ground.push_back({std::round(d * 100) / 100, ground_at(setup.scene.terrain, at.x(), at.y())});
+  }
+  json conductors = json::array();
+  const std::string prefix = span.id + "/";
+  for (const Conductor& conductor : setup.scene.conductors) {
+    if (!conductor.id.starts_with(prefix)) continue;
+    json line = json::array();
+    const std::size_t stride = std::max<std::size_t>(1, conductor.points_enu_m.size() / 64);
+    for (std::size_t k = 0; k < conductor.points_enu_m.size(); k += stride) {
+      const Eigen::Vector3d& p = conductor.points_enu_m[k];
+      line.push_back({std::round((p.head<2>() - span.from_en).dot(unit) * 100) / 100,
+                      std::round(p.z() * 100) / 100});
+    }
+    const Eigen::Vector3d& last = conductor.points_enu_m.back();
+    line.push_back({std::round((last.head<2>() - span.from_en).dot(unit) * 100) / 100,
+                    std::round(last.z() * 100) / 100});
+    conductors.push_back({{"id", conductor.id}, {"line", line}});
+  }
+  return {{"length_m", length}, {"ground", ground}, {"conductors", conductors}};
+}
+
 // What the scenario declares, where the map's handles go: spans by their supports, poles and
 // trees by their bases (the keys a drag rewrites).
 json handles_view(const FlightSetup& setup) {
@@ -143,7 +176,8 @@ json handles_view(const FlightSetup& setup) {
   for (const SpanSpec& span : spec.spans) {
     spans.push_back({{"id", span.id},
                      {"from", lat_lon(frame, ground(span.from_en))},
-                     {"to", lat_lon(frame, ground(span.to_en))}});
+                     {"to", lat_lon(frame, ground(span.to_en))},
+                     {"section", span_section(setup, span)}});
   }
   for (const Cylinder& pole : spec.poles) {
     poles.push_back({{"id", pole.id}, {"at", lat_lon(frame, pole.base_enu_m)}});

@@ -1,7 +1,7 @@
 // `owsim studio` as a user works with it, in headless Chromium (Debian's, driven by the pinned
 // playwright-core of web/): opened on a recorded flight, a 60 s segment selected, a span placed
 // across the track by two clicks, a bad diameter refused beside its field and mended, Fly with
-// its progress, wire returns in the report, Save. No console errors; no request leaves the
+// its progress, wire returns in the report, a truth row back to the map, Save. No console errors; no request leaves the
 // studio's own address. Screenshots in SHOT_DIR.
 //   node tests/web/studio_flow.mjs URL SHOT_DIR
 // Prints one JSON line of what it saw; exits non-zero with the failed checks listed.
@@ -128,9 +128,17 @@ const facts = await frame.locator('#summary table.facts').innerText();
 wires = Number((/wire ([\d,]+)/.exec(facts)?.[1] ?? '0').replace(/,/g, ''));
 check(wires > 0, `wire returns in the report: ${wires}`);
 await page.screenshot({ path: join(shotDir, 'studio_report.png') });
-await page.locator('#close-report').click();
 
-// 5. Save.
+// 5. A row of the report's ground-truth table picks its object on the map: the wire's span, its
+//    form and its cross-section against the ground.
+await frame.locator('tr[data-object="span-1/1"]').click();
+await page.waitForSelector('#report-pane[hidden]', { state: 'attached', timeout: 10000 });
+await page.waitForSelector('#cross-section:not([hidden])', { timeout: 10000 });
+const picked = await page.evaluate(() => window.owsimStudio.selected);
+check(picked?.kind === 'span' && picked?.id === 'span-1', `the truth row picked ${JSON.stringify(picked)}`);
+await page.screenshot({ path: join(shotDir, 'studio_section.png') });
+
+// 6. Save.
 await page.locator('#save').click();
 await page.waitForFunction(() => /saved/.test(document.querySelector('#status').textContent), null, { timeout: 10000 });
 

@@ -79,7 +79,7 @@ function groundTruth(meta) {
         return ascending ? order : -order;
       });
     }
-    body.replaceChildren(...rows.map((o) => el('tr', {}, ...COLUMNS.map(([key, , kind]) => {
+    body.replaceChildren(...rows.map((o) => linkToStudio(el('tr', { 'data-object': o.id }, ...COLUMNS.map(([key, , kind]) => {
       const v = o[key];
       if (key === 'class') {
         const swatch = el('span', { class: 'swatch' });
@@ -89,7 +89,7 @@ function groundTruth(meta) {
       }
       const text = kind === 'text' ? String(v) : kind === 'int' ? formatNumber(v) : formatNumber(v, kind);
       return el('td', { class: kind === 'text' ? '' : 'number' }, text);
-    }))));
+    })), o.id)));
     for (const th of headRow.children) {
       th.dataset.sorted = th.dataset.key === sortKey ? (ascending ? 'ascending' : 'descending') : '';
     }
@@ -107,6 +107,17 @@ function groundTruth(meta) {
   render();
   box.append(table);
   return box;
+}
+
+// Inside owsim studio (the page in a frame of the studio's own origin), a row of the ground-truth
+// table picks its object on the studio's map (web/studio/studio.js listenToReport).
+function linkToStudio(row, id) {
+  const origin = window.location.origin;
+  if (window.parent === window || !origin.startsWith('http')) return row;
+  row.classList.add('linked');
+  row.title = 'show on the studio\'s map';
+  row.addEventListener('click', () => window.parent.postMessage({ owsimObject: id }, origin));
+  return row;
 }
 
 export function summarySection(meta) {

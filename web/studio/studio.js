@@ -8,6 +8,7 @@ import * as api from './api.js';
 import { Drawing } from './drawing.js';
 import { FlyControl } from './fly.js';
 import { ObjectForms, PLACES } from './object_forms.js';
+import { drawCrossSection } from './cross_section.js';
 import { drawProfile } from './profile.js';
 import { ScenarioDoc, freshId, round } from './scenario_doc.js';
 import { TrackMap } from './track_map.js';
@@ -73,6 +74,7 @@ class Studio {
       yaml: () => this.doc.text(),
       onProblem: (problem) => this.showProblem(problem),
     });
+    this.listenToReport();
     await this.refresh();
     document.body.dataset.ready = 'true';
   }
@@ -105,6 +107,7 @@ class Studio {
     this.map.show(this.view, this.segment());
     this.drawing.showHandles(this.view.handles);
     this.cursorMoved();
+    this.showSection();
     return true;
   }
 
@@ -169,6 +172,38 @@ class Studio {
     this.selected = { kind, id };
     this.forms.showForm(this.doc, kind, id);
     this.map.highlight(id);
+    this.showSection();
+  }
+
+  // The selected span's cross-section against the ground, under its form.
+  showSection() {
+    const canvas = $('cross-section');
+    const span = this.selected?.kind === 'span'
+      ? this.view?.handles.spans.find((s) => s.id === this.selected.id)
+      : null;
+    canvas.hidden = !span;
+    drawCrossSection(canvas, span?.section);
+  }
+
+  // A click on a row of the report's ground-truth table (in its frame) picks that object here.
+  listenToReport() {
+    window.addEventListener('message', (event) => {
+      if (event.origin !== window.location.origin || typeof event.data?.owsimObject !== 'string') return;
+      const id = event.data.owsimObject;
+      const kinds = { span: this.view?.handles.spans, pole: this.view?.handles.poles, tree: this.view?.handles.trees };
+      // A conductor "<span>/<n>" or a span's support "<span>/pole-1" belongs to its span.
+      const owner = id.includes('/') ? id.slice(0, id.indexOf('/')) : id;
+      for (const [kind, list] of Object.entries(kinds)) {
+        if (list?.some((item) => item.id === owner)) {
+          $('report-pane').hidden = true;
+          this.pick(kind, owner);
+          this.map.highlight(id);
+          return;
+        }
+      }
+      this.map.highlight(id);
+      $('report-pane').hidden = true;
+    });
   }
 
   async addSpan(from, to) {
