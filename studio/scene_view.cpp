@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "evaluation/frame_truth.hpp"
@@ -130,6 +131,53 @@ json objects_view(const FlightSetup& setup) {
   return objects;
 }
 
+// The ground's heights under the whole track (widened by 500 m) on a lattice of at most 200 × 200
+// samples, for the map's hillshade and contours; null where the terrain is flat or absent (nothing
+// to shade) and, per sample, where a DEM or grid has no height. Rows south to north, columns west
+// to east; `bounds` the lattice's corners in WGS-84 ([south, west], [north, east]).
+json terrain_view(const FlightSetup& setup) {
+  const Terrain& terrain = setup.scene.terrain;
+  if (terrain.kind != TerrainKind::grid && terrain.kind != TerrainKind::dem) return nullptr;
+  const Trajectory& trajectory = setup.trajectory;
+  Eigen::AlignedBox2d area;
+  for (double t = trajectory.start_s(); t <= trajectory.end_s(); t += 0.5) {
+    area.extend(Eigen::Vector2d(trajectory.pose_at(t).position_enu_m.head<2>()));
+  }
+  area.extend(Eigen::Vector2d(trajectory.pose_at(trajectory.end_s()).position_enu_m.head<2>()));
+  constexpr double kMarginM = 500.0;
+  area.min().array() -= kMarginM;
+  area.max().array() += kMarginM;
+  constexpr int kMaxSamples = 200;
+  const double step = std::max(area.sizes().maxCoeff() / (kMaxSamples - 1), 1.0);
+  const int cols = std::min(kMaxSamples, static_cast<int>(std::ceil(area.sizes().x() / step)) + 1);
+  const int rows = std::min(kMaxSamples, static_cast<int>(std::ceil(area.sizes().y() / step)) + 1);
+  json heights = json::array();
+  double lowest = std::numeric_limits<double>::infinity();
+  double highest = -lowest;
+  for (int row = 0; row < rows; ++row) {
+    for (int col = 0; col < cols; ++col) {
+      const json u = ground_at(terrain, area.min().x() + col * step, area.min().y() + row * step);
+      heights.push_back(u.is_null() ? u : json(std::round(u.get<double>() * 10) / 10));
+      if (!u.is_null()) {
+        lowest = std::min(lowest, u.get<double>());
+        highest = std::max(highest, u.get<double>());
+      }
+    }
+  }
+  if (!(highest >= lowest)) return nullptr;  // no height anywhere under the track
+  const Eigen::Vector2d far_corner(area.min().x() + (cols - 1) * step,
+                                   area.min().y() + (rows - 1) * step);
+  const LocalFrame& frame = setup.local_frame;
+  return {{"cols", cols},
+          {"rows", rows},
+          {"step_m", step},
+          {"lowest_m", lowest},
+          {"highest_m", highest},
+          {"bounds", json::array({lat_lon(frame, {area.min().x(), area.min().y(), 0.0}),
+                                  lat_lon(frame, {far_corner.x(), far_corner.y(), 0.0})})},
+          {"heights", heights}};
+}
+
 // A span's cross-section for the form: the ground and each of its conductors (ids "<span>/<n>")
 // as (distance along the span from its first support, height) pairs, metres.
 json span_section(const FlightSetup& setup, const SpanSpec& span) {
@@ -202,6 +250,7 @@ nlohmann::json scene_view(const Simulation& simulation, double step_s) {
                      {"end_s", simulation.frame_end_s(setup.frames - 1)}};
   view["objects"] = objects_view(setup);
   view["handles"] = handles_view(setup);
+  view["terrain"] = terrain_view(setup);
   return view;
 }
 

@@ -4,6 +4,8 @@
 // its progress, wire returns in the report, a truth row back to the map, Save. No console errors; no request leaves the
 // studio's own address. Screenshots in SHOT_DIR.
 //   node tests/web/studio_flow.mjs URL SHOT_DIR
+//   node tests/web/studio_flow.mjs URL SHOT_DIR --terrain   a scenario with a DEM: its hillshade
+//                                                           and contours under the flight
 // Prints one JSON line of what it saw; exits non-zero with the failed checks listed.
 import { createRequire } from 'node:module';
 import { mkdirSync } from 'node:fs';
@@ -14,7 +16,7 @@ const here = dirname(fileURLToPath(import.meta.url));
 const require = createRequire(join(here, '..', '..', 'web', 'package.json'));
 const { chromium } = require('playwright-core');
 
-const [address, shotDir] = process.argv.slice(2);
+const [address, shotDir, mode] = process.argv.slice(2);
 mkdirSync(shotDir, { recursive: true });
 const origin = new URL(address).origin;
 const failures = [];
@@ -55,6 +57,23 @@ let wires;
 try {
 await page.goto(address);
 await page.waitForSelector('body[data-ready="true"]', { timeout: 60000 });
+if (mode === '--terrain') {
+  const shading = await page.locator('img.hillshade').count();
+  const lines = await page.locator('path.contour').count();
+  const interval = await page.evaluate(() => window.owsimStudio.map.terrainLayer.getLayers()[0]?.contourInterval);
+  check(shading === 1, `${shading} hillshade images`);
+  check(lines >= 5, `${lines} contour lines`);
+  await page.screenshot({ path: join(shotDir, 'studio_terrain.png') });
+  check(consoleErrors.length === 0, `console errors: ${consoleErrors.join(' | ')}`);
+  check(foreign.length === 0, `requests leaving the studio: ${foreign.join(' ')}`);
+  await browser.close();
+  console.log(JSON.stringify({ shading, lines, interval }));
+  if (failures.length > 0) {
+    console.error(`studio_flow: ${failures.length} check(s) failed:\n  ${failures.join('\n  ')}`);
+    process.exit(1);
+  }
+  process.exit(0);
+}
 track = await page.evaluate(() => {
   const t = window.owsimStudio.view.track;
   return { start: t.start_s, end: t.end_s, samples: t.t.length };

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # `owsim studio` end to end (tests/web/studio_flow.mjs): the real recorded flight copied into a
-# fresh folder, the studio started on it, the user's job done in headless Chromium; then `owsim
-# run` of the saved scenario must write the same bytes as the studio's Fly did. Screenshots in
+# fresh folder, the studio started on it, the user's job done in headless Chromium; the bundled
+# real_corridor's DEM shaded and contoured on the map; then `owsim run` of the saved scenario must
+# write the same bytes as the studio's Fly did. Screenshots in
 # BUILD/web-studio-screens (CI artifacts).
 #   tests/web/studio_flow.sh BUILD_DIR SHARED_DIR
 set -euo pipefail
@@ -38,6 +39,22 @@ node "$root/tests/web/studio_flow.mjs" "$address" "$shots"
 # Ctrl-C stops it cleanly.
 kill -INT $studio
 wait $studio
+trap - EXIT
+
+# A scenario with a DEM (the bundled real_corridor, copied with its data): hillshade and contours.
+mkdir -p "$work/dem"
+cp "$root/examples/real_corridor.yaml" "$work/dem/"
+cp -r "$root/examples/data" "$work/dem/"
+"$owsim" studio "$work/dem/real_corridor.yaml" --no-browser > "$work/dem.out" 2> "$work/dem.err" &
+dem_studio=$!
+trap 'kill $dem_studio 2>/dev/null || true' EXIT
+for _ in $(seq 100); do
+  [ -s "$work/dem.out" ] && break
+  sleep 0.1
+done
+node "$root/tests/web/studio_flow.mjs" "$(head -n 1 "$work/dem.out")" "$shots" --terrain
+kill -TERM $dem_studio
+wait $dem_studio
 trap - EXIT
 
 # The saved scenario flown by owsim run: the same bytes as the studio's run.

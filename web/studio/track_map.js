@@ -1,8 +1,10 @@
-// The offline map: no tile server — the track coloured by time, the selected segment, the scene's
+// The offline map: no tile server — the ground's hillshade and contours (a DEM or height grid),
+// the track coloured by time, the selected segment, the scene's
 // objects as built (wires, poles, trees, mesh and fog outlines), the aircraft and its field of
 // view at the time cursor, a scale, a north arrow and the pointer's WGS-84 and (approximate)
 // ENU coordinates.
 import L from 'leaflet';
+import { terrainLayer } from './terrain_layer.js';
 
 const EARTH_RADIUS_M = 6378137;
 
@@ -32,6 +34,7 @@ export class TrackMap {
       },
     });
     new North({ position: 'topright' }).addTo(this.map);
+    this.terrainLayer = L.layerGroup().addTo(this.map);
     this.trackLayer = L.layerGroup().addTo(this.map);
     this.objectLayer = L.layerGroup().addTo(this.map);
     this.cursorLayer = L.layerGroup().addTo(this.map);
@@ -58,6 +61,13 @@ export class TrackMap {
     this.view = view;
     this.trackLayer.clearLayers();
     this.objectLayer.clearLayers();
+    // The ground changes only with the scenario's terrain: redrawn when its lattice does.
+    const terrainKey = JSON.stringify(view.terrain?.bounds ?? null) + (view.terrain?.heights.length ?? 0);
+    if (terrainKey !== this.terrainKey) {
+      this.terrainKey = terrainKey;
+      this.terrainLayer.clearLayers();
+      this.terrainLayer.addLayer(terrainLayer(view.terrain));
+    }
     const track = view.track;
     const count = track.t.length;
     const span = Math.max(1e-9, track.end_s - track.start_s);
