@@ -21,14 +21,20 @@ rm -rf "$work" "$shots"
 mkdir -p "$work" "$shots"
 cp "$log" "$work/"
 
-"$owsim" studio "$work/WingFlight1.log" --no-browser > "$work/studio.out" 2> "$work/studio.err" &
-studio=$!
-trap 'kill $studio 2>/dev/null || true' EXIT
-for _ in $(seq 100); do
-  [ -s "$work/studio.out" ] && break
-  sleep 0.1
-done
-address=$(head -n 1 "$work/studio.out")
+# Starts `owsim studio INPUT` in the background (its pid in $studio) and waits for its address,
+# the first line it prints, into $address.
+start_studio() {
+  "$owsim" studio "$1" --no-browser > "$2.out" 2> "$2.err" &
+  studio=$!
+  trap 'kill $studio 2>/dev/null || true' EXIT
+  for _ in $(seq 100); do
+    [ -s "$2.out" ] && break
+    sleep 0.1
+  done
+  address=$(head -n 1 "$2.out")
+}
+
+start_studio "$work/WingFlight1.log" "$work/studio"
 case "$address" in
   http://127.0.0.1:*/\?token=*) ;;
   *) echo "studio_flow: the studio printed '$address' first"; cat "$work/studio.err"; exit 1 ;;
@@ -45,16 +51,10 @@ trap - EXIT
 mkdir -p "$work/dem"
 cp "$root/examples/real_corridor.yaml" "$work/dem/"
 cp -r "$root/examples/data" "$work/dem/"
-"$owsim" studio "$work/dem/real_corridor.yaml" --no-browser > "$work/dem.out" 2> "$work/dem.err" &
-dem_studio=$!
-trap 'kill $dem_studio 2>/dev/null || true' EXIT
-for _ in $(seq 100); do
-  [ -s "$work/dem.out" ] && break
-  sleep 0.1
-done
-node "$root/tests/web/studio_flow.mjs" "$(head -n 1 "$work/dem.out")" "$shots" --terrain
-kill -TERM $dem_studio
-wait $dem_studio
+start_studio "$work/dem/real_corridor.yaml" "$work/dem"
+node "$root/tests/web/studio_flow.mjs" "$address" "$shots" --terrain
+kill -TERM $studio
+wait $studio
 trap - EXIT
 
 # The saved scenario flown by owsim run: the same bytes as the studio's run.
