@@ -30,6 +30,8 @@ std::string_view studio_page_html() {
       <button type="button" data-tool="span">Span</button>
       <button type="button" data-tool="pole">Pole</button>
       <button type="button" data-tool="tree">Tree</button>
+      <button type="button" data-tool="mesh">Mesh</button>
+      <select id="mesh-file" title="the model file the Mesh tool places"></select>
       <button type="button" data-tool="forest">Forest</button>
       <button type="button" data-tool="fog">Fog</button>
       <span id="cursor-coords"></span>

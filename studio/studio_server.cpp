@@ -1,5 +1,7 @@
 #include "studio/studio_server.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <fstream>
 #include <mutex>
 #include <nlohmann/json.hpp>
@@ -28,6 +30,7 @@ namespace owsim::studio {
 namespace {
 
 using nlohmann::json;
+namespace fs = std::filesystem;
 
 constexpr std::size_t kMaxRequestBytes = 8u << 20;  // a scenario's YAML is kilobytes
 
@@ -171,6 +174,32 @@ void StudioServer::State::routes() {
       return;
     }
     send_json(response, {{"ok", true}, {"run", job.status()}});
+  });
+  // The model files in the scenario's folder tree (what a mesh's `file` may name), relative,
+  // sorted; the output folder and hidden folders are not searched, and links are not followed.
+  server.Get("/api/models", [this](const httplib::Request&, httplib::Response& response) {
+    json files = json::array();
+    std::error_code error;
+    const fs::path out = fs::weakly_canonical(options.out, error);
+    for (auto entry = fs::recursive_directory_iterator(folder, error);
+         !error && entry != fs::recursive_directory_iterator(); entry.increment(error)) {
+      const std::string name = entry->path().filename().string();
+      if (entry->is_directory(error) &&
+          (name.starts_with(".") || entry->path() == out || entry.depth() >= 3)) {
+        entry.disable_recursion_pending();
+        continue;
+      }
+      if (!entry->is_regular_file(error) || entry->is_symlink(error)) continue;
+      std::string extension = entry->path().extension().string();
+      for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      if (extension == ".obj" || extension == ".ply" || extension == ".stl" ||
+          extension == ".off" || extension == ".gltf" || extension == ".glb") {
+        files.push_back(entry->path().lexically_relative(folder).generic_string());
+      }
+      if (files.size() >= 1000) break;
+    }
+    std::sort(files.begin(), files.end());
+    send_json(response, {{"ok", true}, {"files", files}});
   });
   server.Get("/api/run", [this](const httplib::Request&, httplib::Response& response) {
     send_json(response, job.status());

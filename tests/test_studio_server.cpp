@@ -196,6 +196,18 @@ TEST_F(StudioServerTest, FilesOutsideTheOutputFolderAreNeverServed) {
   }
 }
 
+TEST_F(StudioServerTest, TheModelFilesOfferedAreTheScenarioFoldersOwn) {
+  fs::create_directories(root_ / "scenario/models/deeper");
+  std::ofstream(root_ / "scenario/models/barn.obj") << "v 0 0 0\n";
+  std::ofstream(root_ / "scenario/models/deeper/Tower.PLY") << "ply\n";
+  std::ofstream(root_ / "scenario/notes.txt") << "not a model";
+  std::ofstream(root_ / "outside.obj") << "v 0 0 0\n";
+  fs::create_symlink(root_ / "outside.obj", root_ / "scenario/linked.obj");
+  fs::create_symlink(root_, root_ / "scenario/models/up");  // a loop out of the folder
+  const json answer = json::parse(client_->Get("/api/models", with_token())->body);
+  EXPECT_EQ(answer["files"], json::array({"models/barn.obj", "models/deeper/Tower.PLY"}));
+}
+
 TEST_F(StudioServerTest, ABadScenarioIsTheLoadersLineWithItsKeyAndTheServerKeepsServing) {
   std::string yaml = read_text(root_ / "scenario/single_span.yaml");
   const std::string good = yaml;

@@ -5,7 +5,8 @@
 // studio's own address. Screenshots in SHOT_DIR.
 //   node tests/web/studio_flow.mjs URL SHOT_DIR
 //   node tests/web/studio_flow.mjs URL SHOT_DIR --terrain   a scenario with a DEM: its hillshade
-//                                                           and contours under the flight
+//                                                           and contours under the flight, and
+//                                                           a mesh from its folder placed
 // Prints one JSON line of what it saw; exits non-zero with the failed checks listed.
 import { createRequire } from 'node:module';
 import { mkdirSync } from 'node:fs';
@@ -63,6 +64,24 @@ if (mode === '--terrain') {
   const interval = await page.evaluate(() => window.owsimStudio.map.terrainLayer.getLayers()[0]?.contourInterval);
   check(shading === 1, `${shading} hillshade images`);
   check(lines >= 5, `${lines} contour lines`);
+  // A second barn from the scenario's folder, placed by the Mesh tool 150 m north of the track's
+  // start: the scenario gains it and the map draws it as built.
+  const models = await page.locator('#mesh-file option').allTextContents();
+  check(models.includes('data/real_corridor_barn.obj'), `model files offered: ${models.join(', ')}`);
+  await page.locator('#mesh-file').selectOption('data/real_corridor_barn.obj');
+  const spot = await page.evaluate(() => {
+    const studio = window.owsimStudio;
+    const [lat, lon] = studio.view.track.points[Math.floor(studio.view.track.points.length / 2)];
+    const p = studio.map.map.latLngToContainerPoint([lat + 150 / 111320, lon]);
+    const box = document.getElementById('map').getBoundingClientRect();
+    return { x: box.left + p.x, y: box.top + p.y };
+  });
+  await page.locator('#tools button[data-tool="mesh"]').click();
+  await page.mouse.click(spot.x, spot.y);
+  await page.waitForSelector('select[name="scene.meshes[1].file"]', { timeout: 20000 });
+  await page.waitForFunction(() => window.owsimStudio.view.objects.filter((o) => o.class === 'building').length === 2, null, { timeout: 20000 });
+  const problem = await page.locator('#problem').innerText();
+  check(problem === '', `a problem after placing the mesh: ${problem}`);
   await page.screenshot({ path: join(shotDir, 'studio_terrain.png') });
   check(consoleErrors.length === 0, `console errors: ${consoleErrors.join(' | ')}`);
   check(foreign.length === 0, `requests leaving the studio: ${foreign.join(' ')}`);

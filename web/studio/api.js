@@ -20,6 +20,7 @@ export const view = (yaml) => call('POST', '/api/view', yaml);
 export const save = (yaml) => call('POST', '/api/save', yaml);
 export const fly = (yaml) => call('POST', '/api/fly', yaml);
 export const runStatus = () => call('GET', '/api/run');
+export const models = () => call('GET', '/api/models');
 export const cancel = () => call('POST', '/api/cancel', '');
 export const enu = (origin, points) =>
   call('POST', '/api/enu', JSON.stringify({ origin, points }));

@@ -1,5 +1,5 @@
 // The editing gestures, by terra-draw (its Leaflet adapter): a span by two clicks (its two
-// supports), a pole or a tree by one, a forest or a fog box by a rectangle; spans' supports,
+// supports), a pole, a tree or a mesh (its origin) by one, a forest or a fog box by a rectangle; spans' supports,
 // poles and trees dragged in select mode. What is drawn here are handles: the objects themselves
 // are drawn from the server's view of the scenario (track_map.js), so the map shows what
 // `owsim run` builds.
@@ -20,7 +20,7 @@ const idStrategy = {
 };
 
 export class Drawing {
-  // handlers: {span(from, to), pole(at), tree(at), forest(corners), fog(corners),
+  // handlers: {span(from, to), pole(at), tree(at), mesh(at), forest(corners), fog(corners),
   //            moved(kind, id, coordinates), selected(kind, id)}
   constructor(map, handlers) {
     this.handlers = handlers;
@@ -34,6 +34,7 @@ export class Drawing {
         point('span', '#c0392b'),
         point('pole', '#6e4b2a'),
         point('tree', '#2e7d32'),
+        point('mesh', '#555555'),
         new TerraDrawRectangleMode({ modeName: 'forest' }),
         new TerraDrawRectangleMode({ modeName: 'fog' }),
         new TerraDrawLineStringMode({ modeName: 'span-line', styles: { lineStringColor: '#c0392b', lineStringWidth: 3 } }),
@@ -83,7 +84,7 @@ export class Drawing {
         this.pending = null;
         this.removeDrafts();
         this.handlers.span(from, at);
-      } else if (mode === 'pole' || mode === 'tree') {
+      } else if (mode === 'pole' || mode === 'tree' || mode === 'mesh') {
         this.removeDrafts();
         this.handlers[mode](latLon(feature.geometry.coordinates));
       } else if (mode === 'forest' || mode === 'fog') {

@@ -31,6 +31,14 @@ const FIELDS = {
     ['id', ['id'], 'text'],
     ['visibility (m)', ['visibility_m'], 'number'],
   ],
+  mesh: [
+    ['id', ['id'], 'text'],
+    ['file', ['file'], 'model'],
+    ['yaw (° from north)', ['yaw_deg'], 'number'],
+    ['scale', ['scale'], 'number'],
+    ['class', ['class'], 'select', ['building', 'pole', 'tree']],
+    ['reflectivity', ['reflectivity'], 'number'],
+  ],
 };
 FIELDS.tree = FIELDS.pole;
 
@@ -40,6 +48,7 @@ export const PLACES = {
   pole: { path: ['scene', 'poles'], key: (i) => `scene.poles[${i}]` },
   tree: { path: ['scene', 'trees'], key: (i) => `scene.trees[${i}]` },
   fog: { path: ['weather', 'fog'], key: (i) => `weather.fog[${i}]` },
+  mesh: { path: ['scene', 'meshes'], key: (i) => `scene.meshes[${i}]` },
 };
 
 function keyOf(base, path) {
@@ -55,12 +64,13 @@ export class ObjectForms {
     this.onDelete = onDelete;
     this.onPick = onPick;
     this.current = null;
+    this.models = [];  // the model files of the scenario's folder (GET /api/models)
   }
 
   // Every object the scenario declares, by kind.
   showList(doc) {
     this.list.replaceChildren();
-    for (const kind of ['span', 'pole', 'tree', 'fog']) {
+    for (const kind of ['span', 'pole', 'tree', 'mesh', 'fog']) {
       doc.list(PLACES[kind].path).forEach((item) => {
         const li = document.createElement('li');
         const button = document.createElement('button');
@@ -112,9 +122,12 @@ export class ObjectForms {
       const name = document.createElement('span');
       name.textContent = label;
       let input;
-      if (type === 'select') {
+      if (type === 'select' || type === 'model') {
         input = document.createElement('select');
-        for (const option of options) input.append(new Option(option, option));
+        const choices = type === 'model' ? this.models : options;
+        for (const option of choices) input.append(new Option(option, option));
+        const current = doc.get([...path, ...sub]);
+        if (type === 'model' && current && !choices.includes(current)) input.append(new Option(current, current));
       } else {
         input = document.createElement('input');
         input.type = type;

@@ -48,6 +48,7 @@ class Studio {
       span: (from, to) => this.addSpan(from, to),
       pole: (at) => this.addCylinder('pole', at),
       tree: (at) => this.addCylinder('tree', at),
+      mesh: (at) => this.addMesh(at),
       forest: (corners) => this.addArea('forest', corners),
       fog: (corners) => this.addArea('fog', corners),
       moved: (kind, id, coordinates) => this.moved(kind, id, coordinates),
@@ -75,6 +76,11 @@ class Studio {
       onProblem: (problem) => this.showProblem(problem),
     });
     this.listenToReport();
+    const models = await api.models();
+    this.forms.models = models.files ?? [];
+    for (const file of this.forms.models) $('mesh-file').append(new Option(file, file));
+    $('mesh-file').hidden = this.forms.models.length === 0;
+    document.querySelector('#tools button[data-tool="mesh"]').disabled = this.forms.models.length === 0;
     await this.refresh();
     document.body.dataset.ready = 'true';
   }
@@ -230,6 +236,20 @@ class Studio {
       : { height_m: 15, diameter_m: 4, reflectivity: 0.2 };
     this.doc.append(PLACES[kind].path, { id, at: { lat: round(at[0], 8), lon: round(at[1], 8) }, ...size });
     this.selected = { kind, id };
+    await this.refresh();
+  }
+
+  // A model file of the scenario's folder (the one chosen beside the Mesh tool), its origin where
+  // the user clicked, on the ground.
+  async addMesh(at) {
+    const file = $('mesh-file').value;
+    if (!file) return;
+    const id = freshId(this.doc, PLACES.mesh.path, 'mesh');
+    this.doc.append(PLACES.mesh.path, {
+      id, file, at: { lat: round(at[0], 8), lon: round(at[1], 8) }, yaw_deg: 0, scale: 1, class: 'building', reflectivity: 0.3,
+    });
+    this.selected = { kind: 'mesh', id };
+    this.setTool('select');
     await this.refresh();
   }
 
