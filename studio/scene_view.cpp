@@ -233,7 +233,25 @@ json handles_view(const FlightSetup& setup) {
   for (const Cylinder& tree : spec.trees) {
     trees.push_back({{"id", tree.id}, {"at", lat_lon(frame, tree.base_enu_m)}});
   }
-  return {{"spans", spans}, {"poles", poles}, {"trees", trees}};
+  // A forest's area and the fog boxes, by their corners (east/north ranges in the scenario).
+  json areas = json::array();
+  const auto corners = [&](const Eigen::Vector2d& e, const Eigen::Vector2d& n) {
+    return json::array({lat_lon(frame, {e.x(), n.x(), 0.0}), lat_lon(frame, {e.y(), n.x(), 0.0}),
+                        lat_lon(frame, {e.y(), n.y(), 0.0}), lat_lon(frame, {e.x(), n.y(), 0.0})});
+  };
+  if (spec.forest) {
+    areas.push_back({{"kind", "forest"},
+                     {"id", "forest"},
+                     {"corners", corners(spec.forest->e_range, spec.forest->n_range)}});
+  }
+  for (const FogVolume& fog : spec.fog) {
+    if (fog.shape != FogShape::box) continue;
+    areas.push_back({{"kind", "fog"},
+                     {"id", fog.id},
+                     {"corners", corners({fog.box.min().x(), fog.box.max().x()},
+                                         {fog.box.min().y(), fog.box.max().y()})}});
+  }
+  return {{"spans", spans}, {"poles", poles}, {"trees", trees}, {"areas", areas}};
 }
 
 }  // namespace

@@ -17,6 +17,8 @@ std::string_view studio_page_html() {
   <span id="scenario-name"></span>
   <span id="status" role="status"></span>
   <span class="spacer"></span>
+  <button id="undo" type="button" title="Ctrl+Z">Undo</button>
+  <button id="redo" type="button" title="Ctrl+Shift+Z or Ctrl+Y">Redo</button>
   <button id="save" type="button">Save</button>
   <button id="fly" type="button">Fly</button>
   <button id="cancel" type="button" hidden>Cancel</button>

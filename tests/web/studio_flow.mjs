@@ -82,6 +82,29 @@ if (mode === '--terrain') {
   await page.waitForFunction(() => window.owsimStudio.view.objects.filter((o) => o.class === 'building').length === 2, null, { timeout: 20000 });
   const problem = await page.locator('#problem').innerText();
   check(problem === '', `a problem after placing the mesh: ${problem}`);
+  // The forest dragged east by its area: its east range moves, its north range stays.
+  const before = await page.evaluate(() => window.owsimStudio.doc.get(['scene', 'forest', 'area']));
+  const grip = await page.evaluate(() => {
+    const studio = window.owsimStudio;
+    const corners = studio.view.handles.areas.find((a) => a.kind === 'forest').corners;
+    const map = studio.map.map;
+    const box = document.getElementById('map').getBoundingClientRect();
+    const [lat, lon] = corners[0];
+    const p = map.latLngToContainerPoint([lat + 0.0004, lon + 0.0006]);  // just inside its SW corner
+    return { x: box.left + p.x, y: box.top + p.y };
+  });
+  await page.locator('#tools button[data-tool="select"]').click();
+  await page.mouse.click(grip.x, grip.y);
+  await page.waitForTimeout(200);
+  await page.mouse.move(grip.x, grip.y);
+  await page.mouse.down();
+  for (let step = 1; step <= 10; step += 1) await page.mouse.move(grip.x + 8 * step, grip.y);
+  await page.mouse.up();
+  await page.waitForFunction((e0) => window.owsimStudio.doc.get(['scene', 'forest', 'area', 'e'])[0] !== e0, before.e[0], { timeout: 10000 });
+  const after = await page.evaluate(() => window.owsimStudio.doc.get(['scene', 'forest', 'area']));
+  const moved = after.e[0] - before.e[0];
+  check(moved > 20 && Math.abs(after.e[1] - before.e[1] - moved) < 1 && Math.abs(after.n[0] - before.n[0]) < 5,
+    `the forest's area after a drag east: ${JSON.stringify(before)} → ${JSON.stringify(after)}`);
   await page.screenshot({ path: join(shotDir, 'studio_terrain.png') });
   check(consoleErrors.length === 0, `console errors: ${consoleErrors.join(' | ')}`);
   check(foreign.length === 0, `requests leaving the studio: ${foreign.join(' ')}`);
@@ -155,6 +178,11 @@ await page.screenshot({ path: join(shotDir, 'studio_problem.png') });
 await diameter.fill('30');
 await diameter.press('Tab');
 await page.waitForFunction(() => !document.querySelector('.field.bad'), null, { timeout: 10000 });
+// Undo brings the bad diameter back with its message; Redo the good one.
+await page.locator('#undo').click();
+await page.waitForFunction(() => document.querySelector('.field.bad') && /diameter_mm: -3\b/.test(window.owsimStudio.doc.text()), null, { timeout: 10000 });
+await page.locator('#redo').click();
+await page.waitForFunction(() => !document.querySelector('.field.bad') && /diameter_mm: 30\b/.test(window.owsimStudio.doc.text()), null, { timeout: 10000 });
 await page.screenshot({ path: join(shotDir, 'studio_span.png') });
 
 // 4. Fly: progress, then the report with wire returns.

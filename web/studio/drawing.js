@@ -1,6 +1,6 @@
 // The editing gestures, by terra-draw (its Leaflet adapter): a span by two clicks (its two
-// supports), a pole, a tree or a mesh (its origin) by one, a forest or a fog box by a rectangle; spans' supports,
-// poles and trees dragged in select mode. What is drawn here are handles: the objects themselves
+// supports), a pole, a tree or a mesh (its origin) by one, a forest or a fog box by a rectangle;
+// spans' supports, poles, trees, the forest and fog boxes dragged in select mode. What is drawn here are handles: the objects themselves
 // are drawn from the server's view of the scenario (track_map.js), so the map shows what
 // `owsim run` builds.
 import L from 'leaflet';
@@ -40,11 +40,13 @@ export class Drawing {
         new TerraDrawLineStringMode({ modeName: 'span-line', styles: { lineStringColor: '#c0392b', lineStringWidth: 3 } }),
         point('pole-handle', '#6e4b2a'),
         point('tree-handle', '#2e7d32'),
+        new TerraDrawRectangleMode({ modeName: 'area-handle', styles: { fillColor: '#2e7d32', fillOpacity: 0.08, outlineColor: '#2e7d32', outlineWidth: 1 } }),
         new TerraDrawSelectMode({
           flags: {
             'span-line': { feature: { draggable: true, coordinates: { draggable: true } } },
             'pole-handle': { feature: { draggable: true } },
             'tree-handle': { feature: { draggable: true } },
+            'area-handle': { feature: { draggable: true } },
           },
         }),
       ],
@@ -96,9 +98,12 @@ export class Drawing {
     }
     // A drag in select mode ended: the handle's new place.
     if (feature.properties.object) {
-      const coordinates = feature.geometry.type === 'Point'
-        ? [latLon(feature.geometry.coordinates)]
-        : feature.geometry.coordinates.map(latLon);
+      const geometry = feature.geometry;
+      const coordinates = geometry.type === 'Point'
+        ? [latLon(geometry.coordinates)]
+        : geometry.type === 'Polygon'
+          ? geometry.coordinates[0].map(latLon)
+          : geometry.coordinates.map(latLon);
       this.handlers.moved(feature.properties.kind, feature.properties.object, coordinates);
     }
   }
@@ -126,6 +131,15 @@ export class Drawing {
           properties: { mode: `${kind}-handle`, kind, object: item.id },
         });
       }
+    }
+    const lonLatRing = (corners) => [...corners, corners[0]].map(lonLat);
+    for (const area of handles.areas ?? []) {
+      features.push({
+        id: `${area.kind}:${area.id}`,
+        type: 'Feature',
+        geometry: { type: 'Polygon', coordinates: [lonLatRing(area.corners)] },
+        properties: { mode: 'area-handle', kind: area.kind, object: area.id },
+      });
     }
     const results = this.draw.addFeatures(features);
     const refused = results.filter((r) => !r.valid);

@@ -64,6 +64,18 @@ class Studio {
     }
     $('cursor').addEventListener('input', () => this.cursorMoved());
     $('save').addEventListener('click', () => this.save());
+    this.history = [];
+    this.future = [];
+    $('undo').addEventListener('click', () => this.undo());
+    $('redo').addEventListener('click', () => this.redo());
+    document.addEventListener('keydown', (event) => {
+      if (!(event.ctrlKey || event.metaKey) || event.target.closest?.('input, select, textarea')) return;
+      const key = event.key.toLowerCase();
+      if (key === 'z' && !event.shiftKey) this.undo();
+      else if (key === 'y' || (key === 'z' && event.shiftKey)) this.redo();
+      else return;
+      event.preventDefault();
+    });
     this.fly = new FlyControl({
       flyButton: $('fly'),
       cancelButton: $('cancel'),
@@ -99,7 +111,33 @@ class Studio {
     await this.refresh();
   }
 
+  // Every state of the document in order, for Undo and Redo (texts: a state is the YAML).
+  recordHistory() {
+    const text = this.doc.text();
+    if (this.history.at(-1) === text) return;
+    this.history.push(text);
+    this.future = [];
+  }
+
+  async undo() {
+    if (this.history.length < 2) return;
+    this.future.push(this.history.pop());
+    this.doc = new ScenarioDoc(this.history.at(-1));
+    await this.refresh();
+  }
+
+  async redo() {
+    if (this.future.length === 0) return;
+    const text = this.future.pop();
+    this.history.push(text);
+    this.doc = new ScenarioDoc(text);
+    await this.refresh();
+  }
+
   async refresh() {
+    this.recordHistory();
+    $('undo').disabled = this.history.length < 2;
+    $('redo').disabled = this.future.length === 0;
     const answer = await api.view(this.doc.text());
     this.forms.showList(this.doc);
     if (this.selected) this.forms.showForm(this.doc, this.selected.kind, this.selected.id);
@@ -281,6 +319,10 @@ class Studio {
   }
 
   async moved(kind, id, coordinates) {
+    if (kind === 'forest' || kind === 'fog') {
+      await this.movedArea(kind, id, coordinates);
+      return;
+    }
     const index = this.doc.list(PLACES[kind].path).findIndex((item) => item?.id === id);
     if (index < 0) return;
     const base = [...PLACES[kind].path, index];
@@ -290,6 +332,31 @@ class Studio {
         this.doc.setPosition([...base, 'to'], coordinates[coordinates.length - 1]);
       } else {
         this.doc.setPosition([...base, 'at'], coordinates[0]);
+      }
+    });
+  }
+
+  // A forest's area or a fog box dragged: its new corners as east/north ranges (exact, by the
+  // server), the box's heights kept.
+  async movedArea(kind, id, corners) {
+    const answer = await api.enu(this.view.origin, corners);
+    if (!answer.ok) {
+      this.showProblem(answer.problem);
+      return;
+    }
+    const es = answer.points.map((p) => p[0]);
+    const ns = answer.points.map((p) => p[1]);
+    const e = [round(Math.min(...es), 1), round(Math.max(...es), 1)];
+    const n = [round(Math.min(...ns), 1), round(Math.max(...ns), 1)];
+    await this.edit(() => {
+      if (kind === 'forest') {
+        this.doc.set(['scene', 'forest', 'area', 'e'], e);
+        this.doc.set(['scene', 'forest', 'area', 'n'], n);
+      } else {
+        const index = this.doc.list(PLACES.fog.path).findIndex((item) => item?.id === id);
+        if (index < 0) return;
+        this.doc.set([...PLACES.fog.path, index, 'box', 'e'], e);
+        this.doc.set([...PLACES.fog.path, index, 'box', 'n'], n);
       }
     });
   }
