@@ -165,6 +165,9 @@ await page.waitForTimeout(200);
 await page.mouse.click(clicks[1].x, clicks[1].y);
 await page.waitForSelector('input[name="scene.spans[0].conductor.diameter_mm"]', { timeout: 10000 });
 spans = await page.evaluate(() => window.owsimStudio.doc.list(['scene', 'spans']).length);
+// The pointer's coordinates: WGS-84 and the scenario's east/north, from the server.
+await page.mouse.move(clicks[1].x + 3, clicks[1].y + 3);
+await page.waitForFunction(() => /°.*e -?\d+\.\d m, n -?\d+\.\d m/.test(document.querySelector('#cursor-coords').textContent), null, { timeout: 10000 });
 check(spans === 1, `${spans} spans after two clicks`);
 
 // 3. A bad diameter: the loader's message beside its field; then a good one.

@@ -31,9 +31,25 @@ class Studio {
     this.view = null;
     this.selected = null;
     this.map = new TrackMap($('map'));
-    this.map.onPointer((latlng, enu) => {
+    // The pointer's WGS-84 position, and its east/north in the scenario's frame converted exactly
+    // by the server (one request in flight at a time; the latest position wins).
+    let pointer = null;
+    let asking = false;
+    const readout = async () => {
+      if (asking || !pointer || !this.view) return;
+      asking = true;
+      const latlng = pointer;
+      pointer = null;
+      const answer = await api.enu(this.view.origin, [[latlng.lat, latlng.lng]]);
       const at = `${latlng.lat.toFixed(6)}°, ${latlng.lng.toFixed(6)}°`;
-      $('cursor-coords').textContent = enu ? `${at}  e ${enu.e.toFixed(1)} m, n ${enu.n.toFixed(1)} m` : at;
+      const [e, n] = answer.ok ? answer.points[0] : [NaN, NaN];
+      $('cursor-coords').textContent = answer.ok ? `${at}  e ${e.toFixed(1)} m, n ${n.toFixed(1)} m` : at;
+      asking = false;
+      readout();
+    };
+    this.map.onPointer((latlng) => {
+      pointer = latlng;
+      readout();
     });
     this.forms = new ObjectForms($('object-list'), $('object-form'), {
       onEdit: (path, value) => this.edit(() => this.doc.set(path, value)),

@@ -1,12 +1,9 @@
 // The offline map: no tile server — the ground's hillshade and contours (a DEM or height grid),
-// the track coloured by time, the selected segment, the scene's
-// objects as built (wires, poles, trees, mesh and fog outlines), the aircraft and its field of
-// view at the time cursor, a scale, a north arrow and the pointer's WGS-84 and (approximate)
-// ENU coordinates.
+// the track coloured by time, the selected segment, the scene's objects as built (wires, poles,
+// trees, mesh and fog outlines), the aircraft and its field of view at the time cursor, a scale
+// and a north arrow; the pointer's position goes to the studio's readout.
 import L from 'leaflet';
 import { terrainLayer } from './terrain_layer.js';
-
-const EARTH_RADIUS_M = 6378137;
 
 // A colour for position s ∈ [0, 1] along the flight (blue → green → yellow).
 export function timeColour(s) {
@@ -38,26 +35,14 @@ export class TrackMap {
     this.trackLayer = L.layerGroup().addTo(this.map);
     this.objectLayer = L.layerGroup().addTo(this.map);
     this.cursorLayer = L.layerGroup().addTo(this.map);
-    this.origin = null;
     this.fitted = false;
   }
 
   onPointer(callback) {
-    this.map.on('mousemove', (event) => callback(event.latlng, this.enuOf(event.latlng)));
-  }
-
-  // East/north metres from the origin on a sphere: for the pointer's readout only (the scenario
-  // itself stores what the user placed in WGS-84, converted exactly by the server).
-  enuOf(latlng) {
-    if (!this.origin) return null;
-    const lat0 = (this.origin.lat * Math.PI) / 180;
-    const e = ((latlng.lng - this.origin.lon) * Math.PI / 180) * EARTH_RADIUS_M * Math.cos(lat0);
-    const n = ((latlng.lat - this.origin.lat) * Math.PI / 180) * EARTH_RADIUS_M;
-    return { e, n };
+    this.map.on('mousemove', (event) => callback(event.latlng));
   }
 
   show(view, segment) {
-    this.origin = view.origin;
     this.view = view;
     this.trackLayer.clearLayers();
     this.objectLayer.clearLayers();
