@@ -307,19 +307,25 @@ class Studio {
     await this.refresh();
   }
 
-  // A forest area or a fog box from a rectangle's corners, as east/north ranges (the keys take
-  // metres): converted exactly by the server in the scenario's local frame.
-  async addArea(kind, corners) {
-    if (!this.view) return;
+  // The east and north ranges ([min, max], 0.1 m) that hold WGS-84 corners, converted exactly by
+  // the server in the scenario's frame; null (the problem shown) when it cannot.
+  async eastNorthRanges(corners) {
+    if (!this.view) return null;
     const answer = await api.enu(this.view.origin, corners);
     if (!answer.ok) {
       this.showProblem(answer.problem);
-      return;
+      return null;
     }
-    const es = answer.points.map((p) => p[0]);
-    const ns = answer.points.map((p) => p[1]);
-    const e = [round(Math.min(...es), 1), round(Math.max(...es), 1)];
-    const n = [round(Math.min(...ns), 1), round(Math.max(...ns), 1)];
+    const range = (values) => [round(Math.min(...values), 1), round(Math.max(...values), 1)];
+    return { e: range(answer.points.map((p) => p[0])), n: range(answer.points.map((p) => p[1])) };
+  }
+
+  // A forest area or a fog box from a rectangle's corners, as east/north ranges (the keys take
+  // metres): converted exactly by the server in the scenario's local frame.
+  async addArea(kind, corners) {
+    const ranges = await this.eastNorthRanges(corners);
+    if (!ranges) return;
+    const { e, n } = ranges;
     if (kind === 'forest') {
       this.doc.set(['scene', 'forest'], {
         count: 200, area: { e, n }, height_m: [8, 25], diameter_m: [2, 8], reflectivity: 0.2,
@@ -355,15 +361,9 @@ class Studio {
   // A forest's area or a fog box dragged: its new corners as east/north ranges (exact, by the
   // server), the box's heights kept.
   async movedArea(kind, id, corners) {
-    const answer = await api.enu(this.view.origin, corners);
-    if (!answer.ok) {
-      this.showProblem(answer.problem);
-      return;
-    }
-    const es = answer.points.map((p) => p[0]);
-    const ns = answer.points.map((p) => p[1]);
-    const e = [round(Math.min(...es), 1), round(Math.max(...es), 1)];
-    const n = [round(Math.min(...ns), 1), round(Math.max(...ns), 1)];
+    const ranges = await this.eastNorthRanges(corners);
+    if (!ranges) return;
+    const { e, n } = ranges;
     await this.edit(() => {
       if (kind === 'forest') {
         this.doc.set(['scene', 'forest', 'area', 'e'], e);
