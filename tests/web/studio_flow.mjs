@@ -82,6 +82,22 @@ if (mode === '--terrain') {
   await page.waitForFunction(() => window.owsimStudio.view.objects.filter((o) => o.class === 'building').length === 2, null, { timeout: 20000 });
   const problem = await page.locator('#problem').innerText();
   check(problem === '', `a problem after placing the mesh: ${problem}`);
+  // The new barn dragged 60 px south by its origin: its `at` moves south.
+  const barnBefore = await page.evaluate(() => window.owsimStudio.doc.get(['scene', 'meshes', 1, 'at']));
+  const barn = await page.evaluate(([lat, lon]) => {
+    const p = window.owsimStudio.map.map.latLngToContainerPoint([lat, lon]);
+    const box = document.getElementById('map').getBoundingClientRect();
+    return { x: box.left + p.x, y: box.top + p.y };
+  }, [barnBefore.lat, barnBefore.lon]);
+  await page.locator('#tools button[data-tool="select"]').click();
+  await page.mouse.click(barn.x, barn.y);
+  await page.waitForTimeout(200);
+  await page.mouse.move(barn.x, barn.y);
+  await page.mouse.down();
+  for (let step = 1; step <= 10; step += 1) await page.mouse.move(barn.x, barn.y + 6 * step);
+  await page.mouse.up();
+  await page.waitForFunction((lat) => window.owsimStudio.doc.get(['scene', 'meshes', 1, 'at']).lat < lat - 1e-5, barnBefore.lat, { timeout: 10000 });
+
   // The forest dragged east by its area: its east range moves, its north range stays.
   const before = await page.evaluate(() => window.owsimStudio.doc.get(['scene', 'forest', 'area']));
   const grip = await page.evaluate(() => {

@@ -1,6 +1,7 @@
 // The editing gestures, by terra-draw (its Leaflet adapter): a span by two clicks (its two
 // supports), a pole, a tree or a mesh (its origin) by one, a forest or a fog box by a rectangle;
-// spans' supports, poles, trees, the forest and fog boxes dragged in select mode. What is drawn here are handles: the objects themselves
+// spans' supports, poles, trees, meshes (by their origin), the forest and fog boxes dragged in
+// select mode. What is drawn here are handles: the objects themselves
 // are drawn from the server's view of the scenario (track_map.js), so the map shows what
 // `owsim run` builds.
 import L from 'leaflet';
@@ -40,12 +41,14 @@ export class Drawing {
         new TerraDrawLineStringMode({ modeName: 'span-line', styles: { lineStringColor: '#c0392b', lineStringWidth: 3 } }),
         point('pole-handle', '#6e4b2a'),
         point('tree-handle', '#2e7d32'),
+        point('mesh-handle', '#555555'),
         new TerraDrawRectangleMode({ modeName: 'area-handle', styles: { fillColor: '#2e7d32', fillOpacity: 0.08, outlineColor: '#2e7d32', outlineWidth: 1 } }),
         new TerraDrawSelectMode({
           flags: {
             'span-line': { feature: { draggable: true, coordinates: { draggable: true } } },
             'pole-handle': { feature: { draggable: true } },
             'tree-handle': { feature: { draggable: true } },
+            'mesh-handle': { feature: { draggable: true } },
             'area-handle': { feature: { draggable: true } },
           },
         }),
@@ -108,7 +111,7 @@ export class Drawing {
     }
   }
 
-  // The draggable handles of the scenario's spans, poles and trees (view.handles).
+  // The draggable handles of the scenario's spans, poles, trees, meshes, forest and fog boxes.
   showHandles(handles) {
     const mode = this.draw.getMode();
     this.draw.clear();
@@ -122,7 +125,7 @@ export class Drawing {
         properties: { mode: 'span-line', kind: 'span', object: span.id },
       });
     }
-    for (const [kind, list] of [['pole', handles.poles], ['tree', handles.trees]]) {
+    for (const [kind, list] of [['pole', handles.poles], ['tree', handles.trees], ['mesh', handles.meshes ?? []]]) {
       for (const item of list) {
         features.push({
           id: `${kind}:${item.id}`,

@@ -165,7 +165,7 @@ class Studio {
     this.view = answer.view;
     this.setupSliders();
     this.map.show(this.view, this.segment());
-    this.drawing.showHandles(this.view.handles);
+    this.drawing.showHandles({ ...this.view.handles, meshes: this.meshHandles() });
     this.cursorMoved();
     this.showSection();
     return true;
@@ -305,6 +305,14 @@ class Studio {
     this.selected = { kind: 'mesh', id };
     this.setTool('select');
     await this.refresh();
+  }
+
+  // The meshes whose origin the scenario gives as {lat, lon}: their handles (a mesh given in
+  // metres or UTM is moved in the YAML).
+  meshHandles() {
+    return this.doc.list(PLACES.mesh.path)
+      .filter((mesh) => Number.isFinite(mesh?.at?.lat) && Number.isFinite(mesh?.at?.lon))
+      .map((mesh) => ({ id: mesh.id, at: [mesh.at.lat, mesh.at.lon] }));
   }
 
   // The east and north ranges ([min, max], 0.1 m) that hold WGS-84 corners, converted exactly by

@@ -72,17 +72,17 @@ export class TrackMap {
     }
   }
 
+  // Objects are drawn, not grabbed: the pointer belongs to the drawing gestures (terra-draw's
+  // handles), so these layers take no events; their ids are kept for highlight().
   drawObject(object) {
     const colour = CLASS_COLOURS[object.class] ?? '#8e44ad';
-    const tooltip = `${object.id} (${object.class})`;
+    const style = { color: colour, interactive: false, objectId: object.id };
     if (object.line) {
-      L.polyline(object.line, { color: colour, weight: 2 }).bindTooltip(tooltip).addTo(this.objectLayer);
+      L.polyline(object.line, { ...style, weight: 2 }).addTo(this.objectLayer);
     } else if (object.at) {
-      L.circle(object.at, { radius: Math.max(object.radius_m, 0.5), color: colour, weight: 2 })
-        .bindTooltip(tooltip)
-        .addTo(this.objectLayer);
+      L.circle(object.at, { ...style, radius: Math.max(object.radius_m, 0.5), weight: 2 }).addTo(this.objectLayer);
     } else if (object.outline) {
-      L.polygon(object.outline, { color: colour, weight: 1, fillOpacity: 0.1 }).bindTooltip(tooltip).addTo(this.objectLayer);
+      L.polygon(object.outline, { ...style, weight: 1, fillOpacity: 0.1 }).addTo(this.objectLayer);
     }
   }
 
@@ -97,8 +97,8 @@ export class TrackMap {
 
   highlight(id) {
     this.objectLayer.eachLayer((layer) => {
-      const tooltip = layer.getTooltip?.();
-      const hit = tooltip && tooltip.getContent().startsWith(`${id}`);
+      const objectId = layer.options.objectId ?? '';
+      const hit = objectId === id || objectId.startsWith(`${id}/`);
       if (layer.setStyle) layer.setStyle({ weight: hit ? 5 : 2 });
     });
   }
