@@ -152,14 +152,18 @@ FrameTruthModel::ObjectView FrameTruthModel::view_of(std::uint32_t object,
       order.emplace_back(std::max(0.0, gap), c);
     }
     std::sort(order.begin(), order.end());
-    const auto for_segments = [&](const ConductorChunk& chunk, const auto& visit) {
-      Eigen::Vector3d previous = to_src(points[chunk.first]);
+    // A chunk's segments, their ends mapped by `at` (a one-vertex chunk is one point).
+    const auto for_segments = [&](const ConductorChunk& chunk, const auto& at, const auto& visit) {
+      Eigen::Vector3d previous = at(points[chunk.first]);
       if (chunk.first == chunk.last) visit(previous, previous);
       for (std::uint32_t k = chunk.first + 1; k <= chunk.last; ++k) {
-        const Eigen::Vector3d next = to_src(points[k]);
+        const Eigen::Vector3d next = at(points[k]);
         visit(previous, next);
         previous = next;
       }
+    };
+    const auto from_sensor = [&](const Eigen::Vector3d& enu) {
+      return Eigen::Vector3d(enu - placement.origin_enu_m);
     };
     // The nearest point overall in offsets from the sensor (distances do not need the turn to
     // sensor axes): only the nearest one is turned.
@@ -167,18 +171,13 @@ FrameTruthModel::ObjectView FrameTruthModel::view_of(std::uint32_t object,
     Eigen::Vector3d overall = Eigen::Vector3d::Zero();
     for (const auto& [gap, c] : order) {
       if (gap * gap >= overall2) break;
-      Eigen::Vector3d previous = points[chunks[c].first] - placement.origin_enu_m;
-      for (std::uint32_t k = chunks[c].first + (chunks[c].first == chunks[c].last ? 0 : 1);
-           k <= chunks[c].last; ++k) {
-        const Eigen::Vector3d next = points[k] - placement.origin_enu_m;
-        const Eigen::Vector3d point =
-            previous + nearest_on_segment(previous, next) * (next - previous);
+      for_segments(chunks[c], from_sensor, [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+        const Eigen::Vector3d point = a + nearest_on_segment(a, b) * (b - a);
         if (point.squaredNorm() < overall2) {
           overall2 = point.squaredNorm();
           overall = point;
         }
-        previous = next;
-      }
+      });
     }
     nearest.overall2 = overall2;
     nearest.overall_src = src_from_enu * overall;
@@ -186,7 +185,7 @@ FrameTruthModel::ObjectView FrameTruthModel::view_of(std::uint32_t object,
       for (const auto& [gap, c] : order) {
         if (gap * gap >= nearest.inside2) break;
         if (!field.may_hold_sphere(to_src(chunks[c].centre), chunks[c].radius_m)) continue;
-        for_segments(chunks[c], [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+        for_segments(chunks[c], to_src, [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
           // A segment whose nearest point is no nearer than the best inside cannot improve it.
           const Eigen::Vector3d closest = a + nearest_on_segment(a, b) * (b - a);
           if (closest.squaredNorm() < nearest.inside2) nearest.clip_one(a, b, field);
@@ -269,7 +268,6 @@ void FrameTruthModel::frame_truth(std::int64_t frame, const FrameSweep& sweep,
   const FieldOfView field(frame_field(scan_, sweep, fibers_));
 
   // The objects near the sensor and those hit; returns counted per object in a per-thread table
-  // (zeroed again below, so it costs the hits, not the scene).
   // (zeroed again below, so it costs the hits, not the scene); the objects marked in a bit set
   // and taken in index order from it.
   thread_local std::vector<std::uint32_t> near;

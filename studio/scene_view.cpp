@@ -16,10 +16,12 @@ namespace {
 using nlohmann::json;
 
 // [lat, lon] of a local ENU position, to the centimetre.
-json lat_lon(const LocalFrame& frame, const Eigen::Vector3d& enu_m) {
-  const Geodetic point = frame.geodetic_from_enu(enu_m);
+json lat_lon(const Geodetic& point) {
   const auto round = [](double deg) { return std::round(deg * 1e7) / 1e7; };
   return json::array({round(point.lat_deg), round(point.lon_deg)});
+}
+json lat_lon(const LocalFrame& frame, const Eigen::Vector3d& enu_m) {
+  return lat_lon(frame.geodetic_from_enu(enu_m));
 }
 
 // The ground's height under (e, n), or null where the terrain has none (off a DEM).
@@ -29,6 +31,23 @@ json ground_at(const Terrain& terrain, double e_m, double n_m) {
   } catch (const Error&) {
     return nullptr;
   }
+}
+
+// The WGS-84 outline ([lat, lon] corners, counter-clockwise from south-west) of the east/north
+// box e × n: a mesh's or fog box's footprint, the forest's area.
+json box_outline(const LocalFrame& frame, const Eigen::Vector2d& e, const Eigen::Vector2d& n) {
+  return json::array({lat_lon(frame, {e.x(), n.x(), 0.0}), lat_lon(frame, {e.y(), n.x(), 0.0}),
+                      lat_lon(frame, {e.y(), n.y(), 0.0}), lat_lon(frame, {e.x(), n.y(), 0.0})});
+}
+
+// About `count` of a polyline's vertices, evenly strided, the last one always: a long span has
+// thousands, the map and the cross-section need a few dozen.
+template <typename Visit>
+void for_sampled_vertices(const std::vector<Eigen::Vector3d>& points, std::size_t count,
+                          const Visit& visit) {
+  const std::size_t stride = std::max<std::size_t>(1, points.size() / count);
+  for (std::size_t k = 0; k < points.size(); k += stride) visit(points[k]);
+  visit(points.back());
 }
 
 json track_view(const FlightSetup& setup, double step_s) {
@@ -54,8 +73,9 @@ json track_view(const FlightSetup& setup, double step_s) {
                   (after - before)
             : 0.0;
     t.push_back(std::round(time * 1e3) / 1e3);
-    points.push_back(lat_lon(frame, at));
-    h.push_back(std::round(frame.geodetic_from_enu(at).h_m * 100) / 100);
+    const Geodetic geodetic = frame.geodetic_from_enu(at);
+    points.push_back(lat_lon(geodetic));
+    h.push_back(std::round(geodetic.h_m * 100) / 100);
     const json ground = ground_at(setup.scene.terrain, at.x(), at.y());
     agl.push_back(ground.is_null() ? json(nullptr)
                                    : json(std::round((at.z() - ground.get<double>()) * 100) / 100));
@@ -84,16 +104,9 @@ json objects_view(const FlightSetup& setup) {
   json objects = json::array();
   for (const Conductor& conductor : scene.conductors) {
     json line = json::array();
-    json heights = json::array();
-    // Every vertex would be thousands on a long span: the map needs a few dozen.
-    const std::size_t stride = std::max<std::size_t>(1, conductor.points_enu_m.size() / 48);
-    for (std::size_t k = 0; k < conductor.points_enu_m.size(); k += stride) {
-      line.push_back(lat_lon(frame, conductor.points_enu_m[k]));
-      heights.push_back(std::round(conductor.points_enu_m[k].z() * 100) / 100);
-    }
-    line.push_back(lat_lon(frame, conductor.points_enu_m.back()));
-    heights.push_back(std::round(conductor.points_enu_m.back().z() * 100) / 100);
-    objects.push_back({{"id", conductor.id}, {"class", "wire"}, {"line", line}, {"u", heights}});
+    for_sampled_vertices(conductor.points_enu_m, 48,
+                         [&](const Eigen::Vector3d& p) { line.push_back(lat_lon(frame, p)); });
+    objects.push_back({{"id", conductor.id}, {"class", "wire"}, {"line", line}});
   }
   for (const Cylinder& cylinder : scene.cylinders) {
     objects.push_back({{"id", cylinder.id},
@@ -105,26 +118,16 @@ json objects_view(const FlightSetup& setup) {
   for (const MeshObject& mesh : scene.meshes) {
     Eigen::AlignedBox3d box;
     for (const Eigen::Vector3d& vertex : mesh.mesh.vertices) box.extend(vertex);
-    json outline = json::array();
-    for (const auto& corner : {Eigen::Vector2d(box.min().x(), box.min().y()),
-                               Eigen::Vector2d(box.max().x(), box.min().y()),
-                               Eigen::Vector2d(box.max().x(), box.max().y()),
-                               Eigen::Vector2d(box.min().x(), box.max().y())}) {
-      outline.push_back(lat_lon(frame, {corner.x(), corner.y(), box.min().z()}));
-    }
-    objects.push_back({{"id", mesh.id}, {"class", to_string(mesh.surface)}, {"outline", outline}});
+    objects.push_back({{"id", mesh.id},
+                       {"class", to_string(mesh.surface)},
+                       {"outline", box_outline(frame, {box.min().x(), box.max().x()},
+                                               {box.min().y(), box.max().y()})}});
   }
   for (const FogVolume& fog : scene.fog) {
     json entry = {{"id", fog.id}, {"class", "fog"}};
     if (fog.shape == FogShape::box) {
-      json outline = json::array();
-      for (const auto& corner : {Eigen::Vector2d(fog.box.min().x(), fog.box.min().y()),
-                                 Eigen::Vector2d(fog.box.max().x(), fog.box.min().y()),
-                                 Eigen::Vector2d(fog.box.max().x(), fog.box.max().y()),
-                                 Eigen::Vector2d(fog.box.min().x(), fog.box.max().y())}) {
-        outline.push_back(lat_lon(frame, {corner.x(), corner.y(), fog.box.min().z()}));
-      }
-      entry["outline"] = outline;
+      entry["outline"] = box_outline(frame, {fog.box.min().x(), fog.box.max().x()},
+                                     {fog.box.min().y(), fog.box.max().y()});
     }
     objects.push_back(std::move(entry));
   }
@@ -197,15 +200,10 @@ json span_section(const FlightSetup& setup, const SpanSpec& span) {
   for (const Conductor& conductor : setup.scene.conductors) {
     if (!conductor.id.starts_with(prefix)) continue;
     json line = json::array();
-    const std::size_t stride = std::max<std::size_t>(1, conductor.points_enu_m.size() / 64);
-    for (std::size_t k = 0; k < conductor.points_enu_m.size(); k += stride) {
-      const Eigen::Vector3d& p = conductor.points_enu_m[k];
+    for_sampled_vertices(conductor.points_enu_m, 64, [&](const Eigen::Vector3d& p) {
       line.push_back({std::round((p.head<2>() - span.from_en).dot(unit) * 100) / 100,
                       std::round(p.z() * 100) / 100});
-    }
-    const Eigen::Vector3d& last = conductor.points_enu_m.back();
-    line.push_back({std::round((last.head<2>() - span.from_en).dot(unit) * 100) / 100,
-                    std::round(last.z() * 100) / 100});
+    });
     conductors.push_back({{"id", conductor.id}, {"line", line}});
   }
   return {{"length_m", length}, {"ground", ground}, {"conductors", conductors}};
@@ -235,21 +233,17 @@ json handles_view(const FlightSetup& setup) {
   }
   // A forest's area and the fog boxes, by their corners (east/north ranges in the scenario).
   json areas = json::array();
-  const auto corners = [&](const Eigen::Vector2d& e, const Eigen::Vector2d& n) {
-    return json::array({lat_lon(frame, {e.x(), n.x(), 0.0}), lat_lon(frame, {e.y(), n.x(), 0.0}),
-                        lat_lon(frame, {e.y(), n.y(), 0.0}), lat_lon(frame, {e.x(), n.y(), 0.0})});
-  };
   if (spec.forest) {
     areas.push_back({{"kind", "forest"},
                      {"id", "forest"},
-                     {"corners", corners(spec.forest->e_range, spec.forest->n_range)}});
+                     {"corners", box_outline(frame, spec.forest->e_range, spec.forest->n_range)}});
   }
   for (const FogVolume& fog : spec.fog) {
     if (fog.shape != FogShape::box) continue;
     areas.push_back({{"kind", "fog"},
                      {"id", fog.id},
-                     {"corners", corners({fog.box.min().x(), fog.box.max().x()},
-                                         {fog.box.min().y(), fog.box.max().y()})}});
+                     {"corners", box_outline(frame, {fog.box.min().x(), fog.box.max().x()},
+                                             {fog.box.min().y(), fog.box.max().y()})}});
   }
   return {{"spans", spans}, {"poles", poles}, {"trees", trees}, {"areas", areas}};
 }

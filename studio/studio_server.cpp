@@ -6,7 +6,6 @@
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <optional>
-#include <sstream>
 #include <string_view>
 #include <utility>
 #include <variant>
@@ -15,6 +14,7 @@
 #include "geometry/geodetic_frame.hpp"
 #include "io/files/atomic_output_file.hpp"
 #include "io/files/confined_path.hpp"
+#include "io/files/input_file.hpp"
 #include "owsim/simulation.hpp"
 #include "studio/flight_job.hpp"
 #include "studio/loader_message.hpp"
@@ -67,14 +67,6 @@ std::string_view content_type_of(const std::filesystem::path& file) {
   return "application/octet-stream";
 }
 
-std::string read_file(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw FileError(file.string() + ": cannot be read");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 }  // namespace
 
 struct StudioServer::State {
@@ -112,7 +104,7 @@ void StudioServer::State::routes() {
     std::string yaml = options.initial_yaml;
     std::error_code error;
     if (std::filesystem::is_regular_file(options.scenario_file, error)) {
-      yaml = read_file(options.scenario_file);
+      yaml = read_input_file(options.scenario_file, "scenario file", kMaxScenarioBytes);
     }
     send_json(response, {{"scenario", options.scenario_file.filename().string()},
                          {"folder", folder.string()},
@@ -214,7 +206,8 @@ void StudioServer::State::routes() {
       const std::filesystem::path root = std::filesystem::weakly_canonical(options.out);
       const std::filesystem::path file = confined_file(root, request.matches[1].str());
       response.set_header("Content-Security-Policy", kReportSecurityPolicy);
-      response.set_content(read_file(file), std::string(content_type_of(file)));
+      response.set_content(read_input_file(file, "output file", 0),
+                           std::string(content_type_of(file)));
     } catch (const std::exception& error) {
       send_json(response, {{"ok", false}, {"problem", {{"message", error.what()}}}}, 404);
     }
