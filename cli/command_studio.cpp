@@ -53,7 +53,13 @@ void open_browser(const std::string& address) {
 void run_studio(const StudioCommandOptions& options) {
   studio::StudioOptions studio;
   studio.port = options.port;
-  if (is_scenario_file(options.input)) {
+  if (options.input.empty()) {
+    // No input: a new planned flight in the current folder (studio.yaml, opened when it exists).
+    studio.scenario_file = "studio.yaml";
+    if (!std::filesystem::exists(studio.scenario_file)) {
+      studio.initial_yaml = studio::new_planned_scenario_yaml("studio");
+    }
+  } else if (is_scenario_file(options.input)) {
     if (!std::filesystem::is_regular_file(options.input)) {
       throw FileError(options.input.string() + ": no such scenario file");
     }
@@ -101,11 +107,10 @@ void add_studio_command(CLI::App& app, CommandResult& /*result*/) {
   auto options = std::make_shared<StudioCommandOptions>();
   CLI::App* command = app.add_subcommand(
       "studio", "place objects along a flight in the browser, fly it and look at it");
-  command
-      ->add_option("INPUT", options->input,
-                   "a scenario (.yaml) to open, or a recorded trajectory (SBET, CSV, HellSim, "
-                   "ArduPilot .log) to start a new scenario beside it")
-      ->required();
+  command->add_option("INPUT", options->input,
+                      "a scenario (.yaml) to open, or a recorded trajectory (SBET, CSV, HellSim, "
+                      "ArduPilot .log) to start a new scenario beside it; none: studio.yaml in the "
+                      "current folder, a new planned flight when it does not exist");
   command->add_option("--port", options->port, "the port on 127.0.0.1 (default: a free one)")
       ->check(CLI::Range(0, 65535));
   command->add_option("--out", options->out,

@@ -66,4 +66,27 @@ std::string new_scenario_yaml(const std::filesystem::path& trajectory_file,
       records.front().time_s, std::min(10.0, records.back().time_s - records.front().time_s));
 }
 
+std::string new_planned_scenario_yaml(const std::string& name) {
+  return fmt::format(
+      "name: {}\n"
+      "seed: 1\n"
+      "origin: {{lat: 48.6881, lon: 10.8447, h: 450.0}}\n"
+      "\n"
+      "sensor:\n"
+      "  model: milows\n"
+      "\n"
+      "trajectory:\n"
+      "  waypoints:\n"
+      "    speed_mps: 40\n"
+      "    points:\n"
+      "      - {{e: -1200, n: 0, u: 100}}\n"
+      "      - {{e: 1200, n: 0, u: 100}}\n"
+      "  start_s: 0\n"
+      "  duration_s: 10\n"
+      "\n"
+      "scene:\n"
+      "  terrain: {{flat_u: 0}}\n",
+      name);
+}
+
 }  // namespace owsim::studio

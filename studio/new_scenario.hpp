@@ -15,6 +15,11 @@ namespace owsim::studio {
 [[nodiscard]] std::string new_scenario_yaml(const std::filesystem::path& trajectory_file,
                                             const std::string& trajectory_name);
 
+// A new scenario with a planned flight (`owsim studio` without input): a 60 s straight leg at
+// 40 m/s, 100 m above flat ground at INTERFACE.md's example origin, the default sensor, an empty
+// scene — to be edited on the map (the origin and waypoints are its keys).
+[[nodiscard]] std::string new_planned_scenario_yaml(const std::string& name);
+
 // The format key a trajectory file's name implies.
 [[nodiscard]] std::string trajectory_format_of(const std::filesystem::path& file);
 

@@ -13,8 +13,10 @@
 #include <string>
 #include <thread>
 
+#include "owsim/simulation.hpp"
 #include "studio/flight_job.hpp"
 #include "studio/loader_message.hpp"
+#include "studio/new_scenario.hpp"
 #include "studio/request_guard.hpp"
 #include "studio/studio_server.hpp"
 
@@ -241,6 +243,16 @@ TEST_F(StudioServerTest, ABadScenarioIsTheLoadersLineWithItsKeyAndTheServerKeeps
   EXPECT_TRUE(
       json::parse(client_->Post("/api/save", with_token(), edited, "text/plain")->body)["ok"]);
   EXPECT_EQ(read_text(root_ / "scenario/single_span.yaml"), edited);
+}
+
+TEST(NewScenario, APlannedFlightAndARecordedOneLoadAsWritten) {
+  const Simulation planned = Simulation::from_yaml(new_planned_scenario_yaml("studio"),
+                                                   fs::temp_directory_path() / "studio.yaml");
+  EXPECT_EQ(planned.frame_count(), 30);  // the 10 s selected of the 60 s leg
+  EXPECT_EQ(trajectory_format_of("a/flight.log"), "ardupilot");
+  EXPECT_EQ(trajectory_format_of("flight.csv"), "csv");
+  EXPECT_EQ(trajectory_format_of("flight.out"), "sbet");
+  EXPECT_EQ(trajectory_format_of("flight.txt"), "hellsim");
 }
 
 TEST(FlightJob, OneRunAtATimeAndACancelEndsIt) {
