@@ -11,7 +11,8 @@
 #include "owsim/version.hpp"
 
 int main(int argc, char** argv) {
-  CLI::App app{"owsim — MilOWS/HELLAS obstacle-warning LiDAR simulator"};
+  // Named, not taken from argv[0]: the help text (and the man pages made from it) says `owsim`.
+  CLI::App app{"owsim — MilOWS/HELLAS obstacle-warning LiDAR simulator", "owsim"};
   app.set_version_flag("--version", std::string("owsim ") + owsim::version_string);
   app.require_subcommand(1);
   // One line per error, as for every other error owsim reports.

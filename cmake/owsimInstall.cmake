@@ -8,15 +8,19 @@ install(TARGETS owsim owsim_geometry owsim_sensor owsim_engine owsim_io owsim_io
                 owsim_io_recording owsim_io_run owsim_io_sweep owsim_io_report
                 owsim_evaluation owsim_facade
         EXPORT owsimTargets
-        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT dev
         INCLUDES DESTINATION include/owsim)
-install(TARGETS owsim_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-install(TARGETS owsim_png owsim_gdal owsim_mesh LIBRARY DESTINATION ${OWSIM_MODULE_INSTALL_DIR})
-if(TARGET owsim_mpi)
-  install(TARGETS owsim_mpi LIBRARY DESTINATION ${OWSIM_MODULE_INSTALL_DIR})
-endif()
-install(FILES ${CMAKE_CURRENT_BINARY_DIR}/generated/owsim/version.hpp DESTINATION include/owsim/owsim)
-install(EXPORT owsimTargets NAMESPACE owsim:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/owsim)
+install(TARGETS owsim_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT owsim)
+foreach(module png gdal mesh mpi)   # the optional modules this build has
+  if(TARGET owsim_${module})
+    install(TARGETS owsim_${module} LIBRARY DESTINATION ${OWSIM_MODULE_INSTALL_DIR}
+            COMPONENT owsim)
+  endif()
+endforeach()
+install(FILES ${CMAKE_CURRENT_BINARY_DIR}/generated/owsim/version.hpp DESTINATION include/owsim/owsim
+        COMPONENT dev)
+install(EXPORT owsimTargets NAMESPACE owsim:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/owsim
+        COMPONENT dev)
 
 configure_package_config_file(cmake/owsimConfig.cmake.in
   ${CMAKE_CURRENT_BINARY_DIR}/owsimConfig.cmake
@@ -25,5 +29,5 @@ write_basic_package_version_file(${CMAKE_CURRENT_BINARY_DIR}/owsimConfigVersion.
   COMPATIBILITY SameMinorVersion)
 install(FILES ${CMAKE_CURRENT_BINARY_DIR}/owsimConfig.cmake
               ${CMAKE_CURRENT_BINARY_DIR}/owsimConfigVersion.cmake
-              ${CMAKE_CURRENT_SOURCE_DIR}/cmake/owsimDependencies.cmake
-        DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/owsim)
+              ${CMAKE_CURRENT_SOURCE_DIR}/cmake/owsimLibraryDependencies.cmake
+        DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/owsim COMPONENT dev)

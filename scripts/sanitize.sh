@@ -12,7 +12,7 @@ link="-fsanitize=address,undefined"
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Debug \
   -DCMAKE_C_FLAGS="$flags" -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="$link" \
   -DCMAKE_SHARED_LINKER_FLAGS="$link" -DCMAKE_MODULE_LINKER_FLAGS="$link" \
-  -DOWSIM_BUILD_BENCH=OFF >/dev/null
+  -DOWSIM_REQUIRE_ALL=ON -DOWSIM_BUILD_BENCH=OFF >/dev/null
 cmake --build "$build" -j "$(nproc)"
 # Leak checking is on: the whole suite runs leak-free, TBB and Embree included. The dynamic TLS of
 # dlopen'ed libraries (GDAL and PROJ behind libowsim_gdal.so) is not scanned: LeakSanitizer's

@@ -1,39 +1,58 @@
 #!/usr/bin/env bash
-# Installs every Debian 12 package owsim's build, tests and benchmarks need.
+# Installs the Debian 12 packages owsim needs, by part:
+#   scripts/setup.sh                 everything: every optional module, the tests, the benchmarks,
+#                                    the fuzzers, packaging (what scripts/test.sh and CI use)
+#   scripts/setup.sh core            building and running the `owsim` command (the quick start)
+#   scripts/setup.sh core png gdal   the core and the named optional modules
+# Parts: core, png (quick-look images), gdal (DEM terrain, GIS lines), mesh (model files),
+# mpi (mpirun), python (the Python module), tests, fuzz, package, all.
 # Quick when everything is already installed: apt is only called for what is missing.
 set -euo pipefail
 
-packages=(
-  build-essential cmake ninja-build pkg-config
-  libembree-dev libtbb-dev libgeographiclib-dev libeigen3-dev libopenimageio-dev
-  libgtest-dev libgmock-dev libbenchmark-dev
+declare -A part
+part[core]="build-essential cmake ninja-build pkg-config
+  libembree-dev libtbb-dev libgeographiclib-dev libeigen3-dev
   libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libfmt-dev
-  libgdal-dev python3-gdal         # DEM terrain (libowsim_gdal.so) and its test oracle
-  libassimp-dev                    # triangle meshes (libowsim_mesh.so)
-  libtinyobjloader-dev             # OBJ meshes, fast (libowsim_mesh.so)
-  python3-numpy python3-scipy python3-pyproj
-  pybind11-dev python3-dev         # the Python module (python/)
-  libopenmpi-dev openmpi-bin       # mpirun … owsim run / sweep (distributed/, libowsim_mpi.so)
-  clang libclang-rt-14-dev llvm    # scripts/fuzz.sh (libFuzzer), symbolized sanitizer reports
-  libboost-dev                     # Clopper–Pearson intervals (Boost.Math beta quantiles, header-only; owsim pd/score)
-  zlib1g-dev                       # the report page's data (owsim view, io/report/)
-  chromium                         # the report page's browser test (tests/web/)
-  strace                           # scenarios open only their own files (tests/scenario_files_strace.py)
-  libcpp-httplib-dev               # owsim studio's local HTTP server (studio/)
-)
-# Node.js and npm bundle the report page's script at build time (web/); Debian's packages unless
-# the machine already has a node and npm of its own.
+  libboost-dev zlib1g-dev libcpp-httplib-dev"
+# Boost.Math (header-only): Clopper–Pearson intervals of owsim pd/score; zlib: the report page's
+# data; cpp-httplib: owsim studio's local server.
+part[png]="libopenimageio-dev"                                # quicklook/ (libowsim_png.so)
+part[gdal]="libgdal-dev"                                      # DEM terrain, GIS lines (libowsim_gdal.so)
+part[mesh]="libassimp-dev libtinyobjloader-dev"               # model files (libowsim_mesh.so)
+part[mpi]="libopenmpi-dev openmpi-bin"                        # mpirun … owsim run/sweep (libowsim_mpi.so)
+part[python]="pybind11-dev python3-dev python3-numpy"         # the Python module (python/)
+part[tests]="libgtest-dev libgmock-dev libbenchmark-dev
+  python3-numpy python3-scipy python3-pyproj python3-gdal
+  chromium strace"    # oracles, the report page's and the studio's browser tests, the strace test
+part[fuzz]="clang libclang-rt-14-dev llvm"                    # scripts/fuzz.sh, symbolized reports
+part[package]="help2man dpkg-dev file"                        # scripts/package.sh: man pages, .deb
+part[all]="${part[core]} ${part[png]} ${part[gdal]} ${part[mesh]} ${part[mpi]} ${part[python]}
+  ${part[tests]} ${part[fuzz]} ${part[package]}"
+
+wanted=("$@")
+if [ ${#wanted[@]} -eq 0 ]; then wanted=(all); fi
+packages=()
+for name in "${wanted[@]}"; do
+  if [ -z "${part[$name]+set}" ]; then
+    echo "setup: unknown part '$name' (core, png, gdal, mesh, mpi, python, tests, fuzz, package, all)" >&2
+    exit 2
+  fi
+  # shellcheck disable=SC2206
+  packages+=(${part[$name]})
+done
+# Node.js and npm bundle the report page's and the studio's scripts at build time (web/); Debian's
+# packages unless the machine already has a node and npm of its own.
 if ! command -v node >/dev/null || ! command -v npm >/dev/null; then packages+=(nodejs npm); fi
 
 missing=()
-for p in "${packages[@]}"; do
+for p in $(printf '%s\n' "${packages[@]}" | sort -u); do
   if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
     missing+=("$p")
   fi
 done
 
 if [ ${#missing[@]} -eq 0 ]; then
-  echo "setup: all ${#packages[@]} packages already installed"
+  echo "setup: the packages of ${wanted[*]} are installed"
 else
   echo "setup: installing ${missing[*]}"
   sudo_cmd=()
@@ -43,8 +62,8 @@ else
   "${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
 fi
 
-# The report page's npm packages, at the versions web/package-lock.json pins (again only when
-# the lock file changed since the last install).
+# The npm packages of web/, at the versions web/package-lock.json pins (again only when the lock
+# file changed since the last install).
 web="$(cd "$(dirname "$0")/.." && pwd)/web"
 if [ ! -f "$web/node_modules/.package-lock.json" ] ||
    [ "$web/package-lock.json" -nt "$web/node_modules/.package-lock.json" ]; then

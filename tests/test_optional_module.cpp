@@ -60,5 +60,17 @@ TEST(OptionalModule, TheEnvironmentNamesTheOnlyFolder) {
   EXPECT_NE(message.find("looked in /nonexistent/modules;"), std::string::npos) << message;
 }
 
+TEST(OptionalModule, AMissingModuleNamesThePackagesThatBringIt) {
+  ASSERT_EQ(::setenv("OWSIM_MODULE_DIR", "/nonexistent/modules", 1), 0);
+  const std::string message =
+      error_of([] { static_cast<void>(OptionalModule::get("gdal", "DEM terrain (terrain.dem)")); });
+  ::unsetenv("OWSIM_MODULE_DIR");
+  // to build it, and to run the packaged one
+  EXPECT_NE(message.find("when libgdal-dev is installed (scripts/setup.sh gdal"), std::string::npos)
+      << message;
+  EXPECT_NE(message.find("apt install libgdal32"), std::string::npos) << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+}
+
 }  // namespace
 }  // namespace owsim

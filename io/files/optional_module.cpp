@@ -46,6 +46,30 @@ std::vector<std::filesystem::path> module_folders() {
   return folders;
 }
 
+// What brings each module: the Debian packages it is built from (and the part of scripts/setup.sh
+// that installs them), and the runtime libraries the installed owsim package's module needs.
+struct ModuleSource {
+  std::string_view name, build_packages, setup_part, runtime_packages;
+};
+constexpr ModuleSource kModuleSources[] = {
+    {"png", "libopenimageio-dev", "png", "libopenimageio2.4"},
+    {"gdal", "libgdal-dev", "gdal", "libgdal32"},
+    {"mesh", "libassimp-dev libtinyobjloader-dev", "mesh", "libassimp5 libtinyobjloader2rc10"},
+    {"mpi", "libopenmpi-dev", "mpi", "libopenmpi3"},
+};
+
+std::string where_it_comes_from(std::string_view name) {
+  for (const ModuleSource& source : kModuleSources) {
+    if (source.name != name) continue;
+    return "; a build makes it when " + std::string(source.build_packages) +
+           " is installed (scripts/setup.sh " + std::string(source.setup_part) +
+           ", then build again); the owsim package's needs " +
+           std::string(source.runtime_packages) + " (apt install " +
+           std::string(source.runtime_packages) + ")";
+  }
+  return "";
+}
+
 }  // namespace
 
 const OptionalModule& OptionalModule::get(std::string_view name, std::string_view purpose) {
@@ -74,7 +98,7 @@ const OptionalModule& OptionalModule::get(std::string_view name, std::string_vie
   }
   throw Error(std::string(purpose) + " need the optional module " + file + ", which cannot be " +
               "loaded (" + reason + "; looked in " + (searched.empty() ? "nowhere" : searched) +
-              "; OWSIM_MODULE_DIR names its folder)");
+              "; OWSIM_MODULE_DIR names its folder" + where_it_comes_from(name) + ")");
 }
 
 const OptionalModule& OptionalModule::get(std::string_view name, std::string_view purpose,

@@ -1,0 +1,19 @@
+# The third-party packages owsim's libraries (owsim::owsim, owsim::owsim_c) link: found by the
+# build and, installed beside owsimConfig.cmake, by a program that does find_package(owsim).
+# Their Debian -dev packages are what libowsim-dev depends on (cmake/owsimPackaging.cmake).
+find_package(Eigen3 3.4 REQUIRED NO_MODULE)
+find_package(embree 3.13 REQUIRED)
+find_package(TBB REQUIRED)
+find_package(yaml-cpp REQUIRED)
+find_package(nlohmann_json 3 REQUIRED)
+find_package(ZLIB REQUIRED)   # deflate of the report page's data (io/report/)
+
+# GeographicLib ships only a find module on Debian; wrap its variables in a target.
+list(APPEND CMAKE_MODULE_PATH /usr/share/cmake/geographiclib)
+find_package(GeographicLib REQUIRED)
+if(NOT TARGET owsim::GeographicLib)
+  add_library(owsim::GeographicLib INTERFACE IMPORTED)
+  set_target_properties(owsim::GeographicLib PROPERTIES
+    INTERFACE_INCLUDE_DIRECTORIES "${GeographicLib_INCLUDE_DIRS}"
+    INTERFACE_LINK_LIBRARIES "${GeographicLib_LIBRARIES}")
+endif()
