@@ -12,7 +12,7 @@ for command in $("$owsim" --help | sed -n '/^Subcommands:/,$p' | awk 'NR > 1 && 
   page="$man_dir/owsim-$command.1.gz"
   [ -f "$page" ] || fail "no page for owsim $command"
   zcat "$page" | grep -q "^\.TH OWSIM-$(echo "$command" | tr a-z A-Z) " || fail "$page: title"
-  zcat "$page" | grep -q "owsim $command" || fail "$page: no usage line"
+  zcat "$page" | grep -q "^owsim-$command \\\\- " || fail "$page: no NAME line"
   for option in $("$owsim" "$command" --help | grep -oE '^ +(-[A-Za-z],)?--[A-Za-z0-9-]+' |
                   sed -E 's/^ +(-[A-Za-z],)?//'); do
     zcat "$page" | grep -q -- "$(roff "$option")" || fail "owsim-$command(1) lacks $option"

@@ -26,7 +26,7 @@ cp -r "$root/examples" "$work/examples"
 cd "$work"
 run() { env -i HOME="$work" PATH=/usr/bin:/bin LANG=C.UTF-8 "$@"; }
 
-[ "$(command -v owsim)" = /usr/bin/owsim ] || fail "owsim is not /usr/bin/owsim"
+[ "$(run sh -c "command -v owsim")" = /usr/bin/owsim ] || fail "owsim is not /usr/bin/owsim"
 [ "$(run owsim --version)" = "owsim $version" ] || fail "owsim --version: $(run owsim --version)"
 run owsim run examples/single_span.yaml --out flight --quiet
 for f in flight.d64 points.csv points.las truth.csv summary.json quicklook/map.png; do

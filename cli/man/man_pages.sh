@@ -24,7 +24,7 @@ cat "$here/owsim.h2m" >>"$work/see_also.h2m"
 
 page() {  # page NAME DESCRIPTION HELP_OPTION
   ln -sf "$(cd "$(dirname "$owsim")" && pwd)/$(basename "$owsim")" "$work/$1"
-  help2man --no-info --section=1 --manual="owsim manual" --source="owsim $version" \
+  help2man --no-info --locale=C.UTF-8 --section=1 --manual="owsim manual" --source="owsim $version" \
     --name="$2" --help-option="$3" --version-string="$version" \
     --include="$work/see_also.h2m" --output="$work/$1.1" "$work/$1"
   gzip -9n -c "$work/$1.1" >"$out/$1.1.gz"
