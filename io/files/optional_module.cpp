@@ -61,9 +61,9 @@ constexpr ModuleSource kModuleSources[] = {
 std::string where_it_comes_from(std::string_view name) {
   for (const ModuleSource& source : kModuleSources) {
     if (source.name != name) continue;
-    return "; a build makes it when " + std::string(source.build_packages) +
+    return "; built when " + std::string(source.build_packages) +
            " is installed (scripts/setup.sh " + std::string(source.setup_part) +
-           ", then build again); the owsim package's needs " +
+           ", then build again); the owsim package's module needs " +
            std::string(source.runtime_packages) + " (apt install " +
            std::string(source.runtime_packages) + ")";
   }
