@@ -29,7 +29,10 @@ if [ -f "$build/man/owsim.1.gz" ]; then
     fail "owsim(1) is not of owsim $version"
 fi
 if ls "$build"/python/owsim*.so >/dev/null 2>&1; then
-  python_version=$(PYTHONPATH="$build/python" /usr/bin/python3 -c 'import owsim; print(owsim.__version__)')
+  # OWSIM_PYTHON_PRELOAD: the sanitizer runtimes an instrumented module needs loaded first
+  python_version=$(PYTHONPATH="$build/python" LD_PRELOAD="${OWSIM_PYTHON_PRELOAD:-}" \
+    ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 /usr/bin/python3 -c \
+    'import owsim; print(owsim.__version__)')
   [ "$python_version" = "$version" ] || fail "Python's owsim.__version__ is $python_version"
 fi
 echo "owsim $version everywhere"
