@@ -4,7 +4,8 @@
 #                  documents (component owsim)
 #   libowsim-dev   headers, static libraries, the CMake package, owsim.pc (component dev)
 #   python3-owsim  the Python module (component python)
-# A package's shared-library dependencies are filled in by scripts/package.sh (dpkg-shlibdeps):
+# A package's shared-library dependencies, and owsim's Recommends and Suggests, are filled in by
+# scripts/package.sh (dpkg-shlibdeps):
 # the command's and libowsim_c.so's as Depends, the optional modules' as Recommends (MPI's as
 # Suggests), so that installing owsim never requires GDAL, assimp, OpenImageIO or MPI.
 
@@ -71,6 +72,5 @@ set(CPACK_COMPONENT_PYTHON_DESCRIPTION
 set(CPACK_DEBIAN_DEV_PACKAGE_DEPENDS
     "owsim (= ${PROJECT_VERSION}), libeigen3-dev (>= 3.4), libembree-dev (>= 3.13), libtbb-dev, \
 libyaml-cpp-dev, nlohmann-json3-dev, libgeographiclib-dev, zlib1g-dev")
-set(CPACK_DEBIAN_OWSIM_PACKAGE_SUGGESTS "openmpi-bin, bash-completion")
 set(CPACK_DEBIAN_OWSIM_PACKAGE_CONTROL_EXTRA ${CMAKE_CURRENT_SOURCE_DIR}/cmake/deb/triggers)
 include(CPack)

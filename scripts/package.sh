@@ -35,8 +35,8 @@ python_module=$(find "$build/python" -maxdepth 1 -name 'owsim*.so' | head -1)
 (cd "$shlibs" && dpkg-shlibdeps -O -e"$python_module" >substvars 2>/dev/null)
 python_depends=$(field Depends)
 version=$(sed -n 's/^set(CPACK_PACKAGE_VERSION "\(.*\)")$/\1/p' "$build/CPackConfig.cmake")
-python_version=$(/usr/bin/python3 -c 'import sys; print(f"{sys.version_info[0]}.{sys.version_info[1]}")')
-python_next=$(/usr/bin/python3 -c 'import sys; print(f"{sys.version_info[0]}.{sys.version_info[1] + 1}")')
+read -r python_version python_next < <(/usr/bin/python3 -c \
+  'import sys; v = sys.version_info; print(f"{v[0]}.{v[1]} {v[0]}.{v[1] + 1}")')
 
 rm -rf "$out"
 cpack --config "$build/CPackConfig.cmake" -B "$out" \

