@@ -56,20 +56,24 @@ void BM_TruthRows(benchmark::State& state) {
 }
 BENCHMARK(BM_TruthRows)->Unit(benchmark::kMicrosecond);
 
-// The per-pulse tally truth.csv's returns come from: the returns on objects alone (arg 0), or
-// with summary.json's counts (arg 1).
+// The per-pulse tally truth.csv's returns come from: the returns on objects alone, from the
+// receiver's object_returns bits as owsim run has them (arg 0) or read from the returns (arg 1),
+// or with summary.json's counts (arg 2).
 void BM_TallyFrame(benchmark::State& state) {
   const TruthFixture& f = truth_fixture();
-  const TallyScope scope = state.range(0) == 0 ? TallyScope::object_hits : TallyScope::summary;
+  const TallyScope scope = state.range(0) < 2 ? TallyScope::object_hits : TallyScope::summary;
+  const std::span<const std::uint8_t> bits =
+      state.range(0) == 0 ? std::span<const std::uint8_t>(f.fixture.traced.object_returns)
+                          : std::span<const std::uint8_t>();
   FrameTally tally;
   for (auto _ : state) {
     FlightSummary::tally(named_object_count(f.fixture.scene), f.fixture.traced.pulses,
-                         f.fixture.traced.returns, tally, scope);
+                         f.fixture.traced.returns, tally, scope, bits);
     benchmark::DoNotOptimize(tally.object_hits.data());
   }
   state.SetItemsProcessed(state.iterations() * f.fixture.pulses_per_frame());
 }
-BENCHMARK(BM_TallyFrame)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_TallyFrame)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace owsim

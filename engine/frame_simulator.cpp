@@ -24,7 +24,8 @@ FrameSimulator::FrameSimulator(const FrameSimulatorParams& params, const EmbreeS
       ray_builder_(params.scan, params.mount),
       tracer_(scene, api),
       weather_(scene.scene().fog, scene.scene().fog_backscatter_ratio_sr,
-               fog_object_index(scene.scene()), params.receiver) {
+               fog_object_index(scene.scene()), params.receiver),
+      named_objects_(named_object_count(scene.scene())) {
   validate(params_.receiver);
 }
 
@@ -36,6 +37,7 @@ void FrameSimulator::prepare(std::int64_t frame, const PoseSource& poses, FrameR
   out.rays.resize(count);
   out.active.resize(count);
   out.returns.resize(count);
+  out.object_returns.resize(count);
 
   const double frame_start = pulse_time_s(scan, frame, 0);
   const double shift = look_into_turn_shift_deg(scan, poses.heading_rate_deg_per_s(frame_start));
@@ -59,21 +61,20 @@ void FrameSimulator::receive_range(FrameResult& out, std::span<const PulseCandid
   const ReceiverParams& receiver = params_.receiver;
   std::array<Candidate, PulseCandidates::kMaxWires + 1> gathered;
   WeatherCandidates weathered;
-  for (int k = begin; k < end; ++k) {
-    const auto index = static_cast<std::size_t>(k);
-    PulseReturns& returns = out.returns[index];
+  // Pulse k's returns, by the cheapest path that gives them.
+  const auto receive_pulse = [&](int k, std::size_t index, PulseReturns& returns) {
     if (out.active[index] == 0) {
       returns = PulseReturns{};
       returns.counter1 =
           reference_counter(scan.reference_counts, receiver, params_.seed, out.frame, k);
       returns.counter2 = receiver.counter.timeout_counts;
-      continue;
+      return;
     }
     const PulseCandidates& met = candidates[static_cast<std::size_t>(k - begin)];
     if (!weather_.empty()) {
       select_returns(weathered_candidates(weather_, out.rays[index], met, receiver, weathered),
                      receiver, params_.seed, out.frame, k, returns);
-      continue;
+      return;
     }
     // Most pulses meet one surface or none and no wire: no gathering for them.
     if (met.wires().empty()) {
@@ -82,9 +83,16 @@ void FrameSimulator::receive_range(FrameResult& out, std::span<const PulseCandid
       } else {
         set_no_returns(receiver, returns);
       }
-      continue;
+      return;
     }
     select_returns(met.gather(gathered), receiver, params_.seed, out.frame, k, returns);
+  };
+  for (int k = begin; k < end; ++k) {
+    const auto index = static_cast<std::size_t>(k);
+    PulseReturns& returns = out.returns[index];
+    receive_pulse(k, index, returns);
+    // While the returns are in registers: no pass over the 88-byte records later.
+    out.object_returns[index] = object_return_bits(returns, named_objects_);
   }
 }
 

@@ -33,8 +33,13 @@ struct FrameResult {
   // What the receiver recorded. For the reference fiber (inactive) count is 0 and counter1 holds
   // the reference range counter of SENSOR-SPEC §8.
   std::vector<PulseReturns> returns;
+  // object_return_bits of each pulse's returns (bit r: returns[r] lies on a named scene object),
+  // written with them: what the ground truth tallies, without a second pass over `returns`.
+  std::vector<std::uint8_t> object_returns;
 
-  [[nodiscard]] FrameView view() const { return FrameView{frame, sweep, pulses, rays, returns}; }
+  [[nodiscard]] FrameView view() const {
+    return FrameView{frame, sweep, pulses, rays, returns, object_returns};
+  }
 };
 
 struct FrameSimulatorParams {
@@ -81,6 +86,7 @@ class FrameSimulator {
   FrameRayBuilder ray_builder_;
   FrameTracer tracer_;
   WeatherMedia weather_;  // the scene's fog volumes (SENSOR-SPEC §10); empty in clear air
+  std::size_t named_objects_ = 0;  // the scene's named_object_count
   // Each worker's candidates for the block of lines it is tracing (simulate).
   mutable tbb::enumerable_thread_specific<std::vector<PulseCandidates>> block_candidates_;
 };

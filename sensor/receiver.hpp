@@ -17,6 +17,7 @@
 // a noisy range below 0 is reported as 0; (4) equal ranges are ordered by higher energy, then
 // object index, then surface, so the result never depends on the input order.
 // Allocation-free and thread-safe: the candidate span is sorted in place.
+#include <cstddef>
 #include <cstdint>
 #include <span>
 
@@ -103,6 +104,17 @@ void select_single_return(const Candidate& candidate, const ReceiverParams& p, s
   PulseReturns out;
   select_returns(candidates, p, seed, frame, pulse, out);
   return out;
+}
+
+// Which of a pulse's returns lie on a named scene object — an object index below `named_objects`
+// (geometry/scene.hpp named_object_count: the conductors, cylinders and meshes; not the terrain or
+// fog): bit r set for returns[r], r = 0, 1. Branch-free: an entry past `count` is masked.
+[[nodiscard]] inline std::uint8_t object_return_bits(const PulseReturns& r,
+                                                     std::size_t named_objects) {
+  const bool first = (r.count >= 1) & (r.returns[0].object_index < named_objects);
+  const bool second = (r.count >= 2) & (r.returns[1].object_index < named_objects);
+  return static_cast<std::uint8_t>(static_cast<unsigned>(first) |
+                                   (static_cast<unsigned>(second) << 1));
 }
 
 // The reference fiber's counter: reference_counts·Δ plus the same range noise, keyed

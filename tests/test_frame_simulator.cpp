@@ -2,7 +2,7 @@
 // the reference counter and no ray, every ray is a unit vector from the sensor, ground returns
 // lie on the ground to the millimetre, and a frame's bytes do not depend on the thread count, the
 // Embree query form, the buffers reused or the order frames are simulated in (DESIGN.md
-// "Determinism").
+// "Determinism"); each pulse's object_returns bits mark exactly its returns on named objects.
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
 
@@ -200,6 +200,40 @@ TEST(FrameSimulator, FramesAreBitIdenticalAcrossThreadsApisAndOrder) {
   EXPECT_TRUE(fingerprint(alone) == expected);
   EXPECT_GT(expected.size(), 100000u);
   EXPECT_GT(wire_returns, 0);  // the comparison covers wire returns, not only ground
+}
+
+TEST(FrameSimulator, ObjectReturnBitsMarkTheReturnsOnNamedObjects) {
+  const test::RandomScene made =
+      test::random_scene(78, {.spans = 4, .trees = 30, .sloped_grid = true, .max_range_m = 500.0});
+  FrameSimulatorParams params;
+  params.seed = 99;
+  const EmbreeDevice device;
+  const EmbreeScene embree(device, made.scene, params.receiver, made.region,
+                           timeout_range_m(params.receiver.counter));
+  const Conductor& wire = made.scene.conductors.front();
+  const Eigen::Vector3d middle = wire.points_enu_m[wire.points_enu_m.size() / 2];
+  const Eigen::Vector3d sight = middle - made.sensor_enu_m;
+  const double heading = std::atan2(sight.x(), sight.y()) * 180.0 / std::numbers::pi;
+  const test::LevelFlight flight(made.sensor_enu_m, heading, 30.0);
+  const std::size_t named = named_object_count(made.scene);
+  int on_objects = 0, on_ground = 0;
+  FrameResult out;
+  for (const std::int64_t frame : {2, 3}) {  // the second into the first's buffers
+    FrameSimulator(params, embree, TraceApi::stream).simulate(frame, flight, out);
+    ASSERT_EQ(out.object_returns.size(), out.returns.size());
+    for (std::size_t k = 0; k < out.returns.size(); ++k) {
+      const PulseReturns& pulse = out.returns[k];
+      unsigned expected = 0;
+      for (int r = 0; r < pulse.count; ++r) {
+        const bool named_object = pulse.returns[r].object_index < named;
+        expected |= named_object ? 1u << r : 0u;
+        (named_object ? on_objects : on_ground) += 1;
+      }
+      ASSERT_EQ(out.object_returns[k], expected) << "frame " << frame << " pulse " << k;
+    }
+  }
+  EXPECT_GT(on_objects, 50);  // wires and trees were hit, and the ground: both bits are tested
+  EXPECT_GT(on_ground, 1000);
 }
 
 }  // namespace

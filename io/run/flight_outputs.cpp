@@ -90,11 +90,8 @@ FlightOutputs::FlightOutputs(const FlightOutputOptions& options, const Scene& sc
       scan_(scan),
       local_frame_(&local_frame),
       scene_(&scene),
-      // The frames' tallies name objects whenever summary.json or truth.csv is written.
-      summary_(options.outputs.contains(OutputKind::summary) ||
-                       (options.outputs.contains(OutputKind::truth) && options.truth != nullptr)
-                   ? named_object_count(scene)
-                   : 0),
+      // Objects are tallied across frames for summary.json alone (truth.csv takes each frame's).
+      summary_(options.outputs.contains(OutputKind::summary) ? named_object_count(scene) : 0),
       encoder_(options_.directory, options_.outputs, scene, scan, local_frame, options.truth),
       checkpoint_path_(run_checkpoint_path(options_.directory)),
       last_checkpoint_(Clock::now()) {

@@ -1,6 +1,8 @@
 #include "io/run/flight_summary.hpp"
 
 #include <algorithm>
+#include <bit>
+#include <cstring>
 #include <string>
 #include <utility>
 
@@ -39,7 +41,7 @@ void FlightSummary::restore(const FlightSummaryCheckpoint& from) {
 
 void FlightSummary::tally(std::size_t object_count, std::span<const Pulse> pulses,
                           std::span<const PulseReturns> returns, FrameTally& out,
-                          TallyScope scope) {
+                          TallyScope scope, std::span<const std::uint8_t> object_returns) {
   out.pulses = pulses.size();
   out.returns_by_class.fill(0);
   out.second_returns = 0;
@@ -52,19 +54,32 @@ void FlightSummary::tally(std::size_t object_count, std::span<const Pulse> pulse
     out.object_hits.push_back(
         {ret.object_index, through_fog ? 1u : 0u, pulses[k].time_s, ret.true_range_m});
   };
+  const auto add_object_hits = [&](std::size_t k, unsigned bits) {
+    if ((bits & 1u) != 0) add_object_hit(k, 0);
+    if ((bits & 2u) != 0) add_object_hit(k, 1);
+  };
+  if (scope == TallyScope::object_hits && object_returns.size() == returns.size()) {
+    // Eight pulses' bits at a time: most pulses (the ground's, no return) have none.
+    const std::size_t count = object_returns.size();
+    std::size_t k = 0;
+    for (; k + 8 <= count; k += 8) {
+      std::uint64_t word = 0;
+      std::memcpy(&word, object_returns.data() + k, sizeof word);
+      while (word != 0) {
+        const auto byte = static_cast<std::size_t>(std::countr_zero(word)) / 8;
+        add_object_hits(k + byte, object_returns[k + byte]);
+        word &= ~(std::uint64_t{0xFF} << (8 * byte));
+      }
+    }
+    for (; k < count; ++k) add_object_hits(k, object_returns[k]);
+    return;
+  }
   if (scope == TallyScope::object_hits) {
     // Without a branch on a pulse's return count (unpredictable) until a return on an object
-    // (rare); the entries past a pulse's count hold stale values, so each test is masked by it.
+    // (rare).
     for (std::size_t k = 0; k < returns.size(); ++k) {
-      const PulseReturns& pulse_returns = returns[k];
-      const bool first =
-          (pulse_returns.count >= 1) & (pulse_returns.returns[0].object_index < object_count);
-      const bool second =
-          (pulse_returns.count >= 2) & (pulse_returns.returns[1].object_index < object_count);
-      if (first | second) [[unlikely]] {
-        if (first) add_object_hit(k, 0);
-        if (second) add_object_hit(k, 1);
-      }
+      const unsigned bits = object_return_bits(returns[k], object_count);
+      if (bits != 0) [[unlikely]] add_object_hits(k, bits);
     }
     return;
   }
@@ -86,6 +101,7 @@ void FlightSummary::add_frame(std::int64_t frame, const FrameTally& tally) {
   for (std::size_t c = 0; c < tally.returns_by_class.size(); ++c) {
     counts_.returns_by_class[c] += tally.returns_by_class[c];
   }
+  if (objects_.empty()) return;  // no summary.json: the hits were tallied for truth.csv alone
   for (const FrameTally::ObjectHit& hit : tally.object_hits) {
     if (hit.object >= objects_.size()) {
       throw Error("summary: a return on object " + std::to_string(hit.object) + " of " +

@@ -99,12 +99,15 @@ class FlightSummary {
   explicit FlightSummary(std::size_t object_count) : objects_(object_count) {}
 
   // One frame's returns tallied, for a scene of `object_count` objects (returns on an index at
-  // or past it are the ground's); any thread.
+  // or past it are the ground's); any thread. `object_returns`, when given (one entry a pulse,
+  // FrameView::object_returns), lets the object_hits scope visit only the pulses with a return on
+  // an object instead of reading every pulse's returns; the tally is the same.
   static void tally(std::size_t object_count, std::span<const Pulse> pulses,
                     std::span<const PulseReturns> returns, FrameTally& out,
-                    TallyScope scope = TallyScope::summary);
+                    TallyScope scope = TallyScope::summary,
+                    std::span<const std::uint8_t> object_returns = {});
   // Adds one frame's tally (frames must come in order). Throws owsim::Error for a hit on an
-  // object index this summary does not tally.
+  // object index this summary does not tally; a summary of no objects takes the counts alone.
   void add_frame(std::int64_t frame, const FrameTally& tally);
 
   [[nodiscard]] std::span<const ObjectTruth> objects() const { return objects_; }

@@ -77,7 +77,9 @@ void FrameEncoder::encode_pulses(const FrameView& frame, int begin, int end,
     const std::size_t tallied = wants(OutputKind::summary) || wants(OutputKind::truth) ? count : 0;
     FlightSummary::tally(
         object_count_, frame.pulses.subspan(first, tallied), frame.returns.subspan(first, tallied),
-        block.tally, wants(OutputKind::summary) ? TallyScope::summary : TallyScope::object_hits);
+        block.tally, wants(OutputKind::summary) ? TallyScope::summary : TallyScope::object_hits,
+        frame.object_returns.empty() ? frame.object_returns
+                                     : frame.object_returns.subspan(first, tallied));
     if (words) {
       const auto block_pulses = frame.pulses.subspan(first, count);
       const auto block_returns = frame.returns.subspan(first, count);
