@@ -148,10 +148,12 @@ FieldOfView::FieldOfView(const ScanField& field)
       cos_beta_max_(std::cos(field.beta_max_deg * kRadPerDeg)) {}
 
 bool FieldOfView::contains(const Eigen::Vector3d& v_src) const {
-  const FieldAngles angles = field_angles(v_src);
-  return v_src.norm() <= field_.range_max_m && angles.alpha_deg >= field_.alpha_min_deg &&
-         angles.alpha_deg <= field_.alpha_max_deg && angles.beta_deg >= field_.beta_min_deg &&
-         angles.beta_deg <= field_.beta_max_deg;
+  // The bounds as nearest_inside takes them: the β planes, a against |v|·sin α, the range ball.
+  const double length = v_src.norm();
+  return length <= field_.range_max_m &&
+         v_src.z() * cos_beta_min_ - v_src.x() * sin_beta_min_ >= 0.0 &&
+         v_src.x() * sin_beta_max_ - v_src.z() * cos_beta_max_ >= 0.0 &&
+         v_src.y() >= sin_alpha_min_ * length && v_src.y() <= sin_alpha_max_ * length;
 }
 
 double nearest_on_segment(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1) {

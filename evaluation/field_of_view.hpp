@@ -41,7 +41,9 @@ class FieldOfView {
   explicit FieldOfView(const ScanField& field);
 
   [[nodiscard]] const ScanField& field() const { return field_; }
-  // True when the sensor-frame offset lies in the field (boundary included).
+  // True when the sensor-frame offset lies in the field (boundary included): its α, β and range
+  // within the bounds, tested without inverse trigonometry (the half-spaces and cones of
+  // nearest_inside).
   [[nodiscard]] bool contains(const Eigen::Vector3d& v_src) const;
   // False when a sphere (centre as a sensor-frame offset) lies wholly outside the field; true may
   // still find nothing inside. The β bounds as planes, α and range by the sphere's angular radius.

@@ -53,6 +53,14 @@ class NearestPoints {
       }
     }
   }
+  // True when the nearest point overall lies in the field: then it is the nearest inside too, and
+  // no segment needs clipping (most objects in view: the field spans 42° by 36°).
+  bool overall_inside(const FieldOfView& field) {
+    if (!(overall2 < kInf) || !field.contains(overall_src)) return false;
+    inside2 = overall2;
+    inside_src = overall_src;
+    return true;
+  }
   // Every kept segment against the field, nearest first.
   void clip(const FieldOfView& field) {
     std::sort(segments_.begin(), segments_.end(),
@@ -87,6 +95,14 @@ std::vector<FrameTruthModel::ConductorChunk> FrameTruthModel::conductor_chunks(
     for (std::uint32_t k = chunk.first; k <= chunk.last; ++k) box.extend(conductor.points_enu_m[k]);
     chunk.centre = box.center();
     chunk.radius_m = 0.5 * box.diagonal().norm();
+    // The distance from the chord is convex along each segment: the vertices bound it.
+    const Eigen::Vector3d& a = conductor.points_enu_m[chunk.first];
+    const Eigen::Vector3d& b = conductor.points_enu_m[chunk.last];
+    for (std::uint32_t k = chunk.first; k <= chunk.last; ++k) {
+      const Eigen::Vector3d p = conductor.points_enu_m[k];
+      const double t = nearest_on_segment(a - p, b - p);
+      chunk.deviation_m = std::max(chunk.deviation_m, (a - p + t * (b - a)).norm());
+    }
     chunks.push_back(chunk);
     if (chunk.last + 1 >= vertices) break;
   }
@@ -148,7 +164,10 @@ FrameTruthModel::ObjectView FrameTruthModel::view_of(std::uint32_t object,
     thread_local std::vector<std::pair<double, std::uint32_t>> order;
     order.clear();
     for (std::uint32_t c = 0; c < chunks.size(); ++c) {
-      const double gap = (chunks[c].centre - placement.origin_enu_m).norm() - chunks[c].radius_m;
+      // No point of the chunk is nearer than its chord less its deviation.
+      const Eigen::Vector3d a = points[chunks[c].first] - placement.origin_enu_m;
+      const Eigen::Vector3d b = points[chunks[c].last] - placement.origin_enu_m;
+      const double gap = (a + nearest_on_segment(a, b) * (b - a)).norm() - chunks[c].deviation_m;
       order.emplace_back(std::max(0.0, gap), c);
     }
     std::sort(order.begin(), order.end());
@@ -181,7 +200,8 @@ FrameTruthModel::ObjectView FrameTruthModel::view_of(std::uint32_t object,
     }
     nearest.overall2 = overall2;
     nearest.overall_src = src_from_enu * overall;
-    if (field.may_hold_sphere(to_src(grid_.sphere(object).centre), grid_.sphere(object).radius_m)) {
+    if (!nearest.overall_inside(field) &&
+        field.may_hold_sphere(to_src(grid_.sphere(object).centre), grid_.sphere(object).radius_m)) {
       for (const auto& [gap, c] : order) {
         if (gap * gap >= nearest.inside2) break;
         if (!field.may_hold_sphere(to_src(chunks[c].centre), chunks[c].radius_m)) continue;
@@ -210,7 +230,8 @@ FrameTruthModel::ObjectView FrameTruthModel::view_of(std::uint32_t object,
                                   std::clamp(placement.origin_enu_m.z(), bottom, top));
     nearest.overall_src = to_src(closest);
     nearest.overall2 = nearest.overall_src.squaredNorm();
-    if (field.may_hold_sphere(to_src(grid_.sphere(object).centre), grid_.sphere(object).radius_m)) {
+    if (!nearest.overall_inside(field) &&
+        field.may_hold_sphere(to_src(grid_.sphere(object).centre), grid_.sphere(object).radius_m)) {
       const auto line_at = [&](const Eigen::Vector2d& xy) {
         nearest.clip_one(to_src({xy.x(), xy.y(), bottom}), to_src({xy.x(), xy.y(), top}), field);
       };
@@ -239,6 +260,7 @@ FrameTruthModel::ObjectView FrameTruthModel::view_of(std::uint32_t object,
   }
   // Meshes whose bounding sphere lies wholly outside the field skip the clipping.
   if (object >= scene.conductors.size() + scene.cylinders.size() &&
+      !nearest.overall_inside(field) &&
       field.may_hold_sphere(to_src(grid_.sphere(object).centre), grid_.sphere(object).radius_m)) {
     nearest.clip(field);
   }

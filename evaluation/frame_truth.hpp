@@ -59,12 +59,16 @@ class FrameTruthModel final : public FrameTruthSource {
                                    const FieldOfView& field) const;
 
  private:
-  // A run of a conductor's polyline, vertices first..last, in a bounding sphere: the conductor's
-  // points are visited chunk by chunk, nearest first, only while a chunk can hold a nearer point.
+  // A run of a conductor's polyline, vertices first..last, in a bounding sphere and within
+  // `deviation_m` of its chord (vertex first to vertex last: a chunk of a catenary is nearly
+  // straight, so the chord less the deviation bounds its distance far more tightly than the
+  // sphere): the conductor's points are visited chunk by chunk, nearest first, only while a
+  // chunk can hold a nearer point.
   struct ConductorChunk {
     std::uint32_t first = 0, last = 0;
     Eigen::Vector3d centre = Eigen::Vector3d::Zero();
     double radius_m = 0.0;
+    double deviation_m = 0.0;
   };
   static constexpr std::uint32_t kChunkSegments = 16;
   [[nodiscard]] static std::vector<ConductorChunk> conductor_chunks(const Conductor& conductor);

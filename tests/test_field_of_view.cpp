@@ -1,9 +1,11 @@
 // Protects the in-field clipping behind truth.csv's in_view (evaluation/field_of_view.hpp): the
 // angles invert SENSOR-SPEC §4's ARC ray, and over random fields and segments the exact interval
 // clip agrees with dense sampling along the segment — every segment with a sampled point inside is
-// found, the point found is inside and no farther than the nearest sampled one.
+// found, the point found is inside and no farther than the nearest sampled one; contains() is the
+// angles' definition.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -36,6 +38,48 @@ TEST(FieldOfView, AnglesInvertTheArcRay) {
       EXPECT_NEAR(angles.beta_deg, beta, 1e-12);
     }
   }
+}
+
+TEST(FieldOfView, ContainsIsTheAnglesAndRangeWithinTheBounds) {
+  // contains() tests half-spaces and cones; the definition is α, β and range within the bounds.
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const auto uniform = [&](double lo, double hi) { return lo + (hi - lo) * unit(rng); };
+  int inside = 0, outside = 0;
+  for (int trial = 0; trial < 200000; ++trial) {
+    ScanField field;
+    field.alpha_min_deg = uniform(-30.0, 10.0);
+    field.alpha_max_deg = field.alpha_min_deg + uniform(0.5, 40.0);
+    field.beta_min_deg = uniform(-40.0, 5.0);
+    field.beta_max_deg = field.beta_min_deg + uniform(0.5, 40.0);
+    field.range_max_m = uniform(200.0, 1300.0);
+    const FieldOfView fov(field);
+    // Anywhere, or (every other trial) near the field, to reach its bounds often.
+    const Eigen::Vector3d v =
+        trial % 2 == 0
+            ? Eigen::Vector3d(uniform(-1400, 1400), uniform(-900, 900), uniform(-900, 900))
+            : src_of(uniform(field.alpha_min_deg - 3, field.alpha_max_deg + 3),
+                     uniform(field.beta_min_deg - 3, field.beta_max_deg + 3),
+                     uniform(0.0, 1.1 * field.range_max_m));
+    const FieldAngles a = field_angles(v);
+    const double length = v.norm();
+    // Away from a bound by more than rounding: both forms must answer alike.
+    constexpr double kDeg = 1e-9;
+    const double margin =
+        std::min({std::abs(a.alpha_deg - field.alpha_min_deg),
+                  std::abs(a.alpha_deg - field.alpha_max_deg),
+                  std::abs(a.beta_deg - field.beta_min_deg),
+                  std::abs(a.beta_deg - field.beta_max_deg),
+                  std::abs(length - field.range_max_m) / field.range_max_m});
+    if (margin < kDeg) continue;
+    const bool by_angles = length <= field.range_max_m && a.alpha_deg >= field.alpha_min_deg &&
+                           a.alpha_deg <= field.alpha_max_deg &&
+                           a.beta_deg >= field.beta_min_deg && a.beta_deg <= field.beta_max_deg;
+    ASSERT_EQ(fov.contains(v), by_angles) << "trial " << trial;
+    (by_angles ? inside : outside) += 1;
+  }
+  EXPECT_GT(inside, 20000);
+  EXPECT_GT(outside, 100000);
 }
 
 TEST(FieldOfView, AWireAcrossTheFieldIsInViewAtItsNearestPoint) {

@@ -2,10 +2,13 @@
 // force over a whole frame's rays from a hovering sensor — an object some ray points at is in
 // view, the point reported for an object in view lies among the frame's rays, and its range is the
 // nearest of the object's densely sampled points inside the field; the object grid finds exactly
-// the objects within the timeout range; returns and closing speed are carried through.
+// the objects within the timeout range; a sagging conductor's nearest points, overall and in the
+// field, are those of its every segment; returns and closing speed are carried through.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
+#include <optional>
 #include <random>
 #include <unordered_map>
 
@@ -250,6 +253,60 @@ TEST_F(HoverFrame, RowsHoldExactlyTheObjectsWithinTheTimeoutRangeAndTheirReturns
   EXPECT_EQ(got, expected);
   EXPECT_GT(got.size(), 200u);
   EXPECT_NEAR(truth.time_s, t_mid, 0.0);
+}
+
+TEST_F(HoverFrame, ConductorsNearestPointsAreThoseOfTheirEverySegment) {
+  // Sagging wires of 60-200 vertices (the chunks' chords and deviations matter) around the
+  // sensor, seen from random poses: the nearest point overall and the nearest inside the field
+  // equal a search over every segment, though the model visits only the chunks that can hold it.
+  Rng rng(11);
+  Scene scene;
+  for (int i = 0; i < 16; ++i) {
+    Conductor wire;
+    wire.id = "w" + std::to_string(i);
+    const Eigen::Vector3d a(uniform(rng, -900, 900), uniform(rng, -900, 900), uniform(rng, 20, 90));
+    const Eigen::Vector3d b = a + Eigen::Vector3d(uniform(rng, -500, 500), uniform(rng, -500, 500),
+                                                  uniform(rng, -30, 30));
+    const double sag = uniform(rng, 2.0, 40.0);
+    const int segments = static_cast<int>(uniform(rng, 60, 200));
+    for (int k = 0; k <= segments; ++k) {
+      const double u = static_cast<double>(k) / segments;
+      wire.points_enu_m.push_back(a + u * (b - a) - Eigen::Vector3d(0, 0, 4 * sag * u * (1 - u)));
+    }
+    wire.radius_m = 0.01;
+    scene.conductors.push_back(wire);
+  }
+  const FrameTruthModel model(scene, scan, mount, *poses);
+  int inside = 0, outside = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    Pose pose;
+    pose.position_enu_m =
+        Eigen::Vector3d(uniform(rng, -600, 600), uniform(rng, -600, 600), uniform(rng, 30, 120));
+    pose.attitude = Attitude{uniform(rng, -10, 10), uniform(rng, -20, 20), uniform(rng, 0, 360)};
+    const SensorPlacement placement = sensor_placement(pose, mount, scan.model);
+    const FieldOfView fov(frame_field(scan, frame_sweep(scan, 7, trial)));
+    const Eigen::Matrix3d src_from_enu = placement.enu_from_src.transpose();
+    for (std::uint32_t object = 0; object < scene.conductors.size(); ++object) {
+      const auto& points = scene.conductors[object].points_enu_m;
+      double overall = std::numeric_limits<double>::infinity();
+      double nearest_inside = overall;
+      for (std::size_t k = 1; k < points.size(); ++k) {
+        const Eigen::Vector3d a = src_from_enu * (points[k - 1] - placement.origin_enu_m);
+        const Eigen::Vector3d b = src_from_enu * (points[k] - placement.origin_enu_m);
+        overall = std::min(overall, (a + nearest_on_segment(a, b) * (b - a)).norm());
+        if (const std::optional<double> t = fov.nearest_inside(a, b)) {
+          nearest_inside = std::min(nearest_inside, (a + *t * (b - a)).norm());
+        }
+      }
+      const FrameTruthModel::ObjectView view = model.view_of(object, placement, fov);
+      SCOPED_TRACE("trial " + std::to_string(trial) + " wire " + std::to_string(object));
+      EXPECT_EQ(view.in_view, std::isfinite(nearest_inside));
+      EXPECT_NEAR(view.range_m, view.in_view ? nearest_inside : overall, 1e-9 * overall);
+      (view.in_view ? inside : outside) += 1;
+    }
+  }
+  EXPECT_GT(inside, 20);  // both kinds of row are compared
+  EXPECT_GT(outside, 200);
 }
 
 TEST(FrameTruth, ClosingSpeedIsTheApproachRateOfTheNearestPoint) {
