@@ -200,18 +200,22 @@ ThroughputReport measure_throughput(const ThroughputOptions& options) {
   double las_best = kNever;
   double points_best = kNever;
   double truth_best = kNever;
+  std::vector<double> truth_ratios;  // per round: the words' seconds over words + truth's
   tbb::task_arena one_thread(1);
   for (int round = 1; round <= options.repeats; ++round) {
     trace_best[winner] = std::min(trace_best[winner], trace_seconds(tracer, frames, candidates));
     // The words alone and the words with truth.csv back to back, in turn first, so that their
     // ratio compares runs made under the same conditions (and the same round's noise).
+    double words_s = 0.0, truth_s = 0.0;
     const auto words = [&] {
-      end_to_end_best = std::min(end_to_end_best, end_to_end_seconds(simulator, setup, threads));
+      words_s = end_to_end_seconds(simulator, setup, threads);
+      end_to_end_best = std::min(end_to_end_best, words_s);
       progress.note("end-to-end", round, options.repeats, rate(end_to_end_best));
     };
     const auto words_and_truth = [&] {
-      truth_best = std::min(truth_best, end_to_end_seconds(simulator, setup, threads,
-                                                           {OutputKind::d64, OutputKind::truth}));
+      truth_s =
+          end_to_end_seconds(simulator, setup, threads, {OutputKind::d64, OutputKind::truth});
+      truth_best = std::min(truth_best, truth_s);
       progress.note("words and truth", round, options.repeats, rate(truth_best));
     };
     if (round % 2 == 1) {
@@ -221,6 +225,7 @@ ThroughputReport measure_throughput(const ThroughputOptions& options) {
       words_and_truth();
       words();
     }
+    truth_ratios.push_back(truth_s > 0.0 ? words_s / truth_s : 0.0);
     single_thread_best =
         std::min(single_thread_best,
                  one_thread.execute([&] { return end_to_end_seconds(simulator, setup, 1); }));
@@ -255,6 +260,11 @@ ThroughputReport measure_throughput(const ThroughputOptions& options) {
   report.las_pulses_per_s = rate(las_best);
   report.points_pulses_per_s = rate(points_best);
   report.truth_pulses_per_s = rate(truth_best);
+  std::sort(truth_ratios.begin(), truth_ratios.end());
+  const std::size_t middle = truth_ratios.size() / 2;
+  report.truth_ratio_paired = truth_ratios.size() % 2 == 1
+                                  ? truth_ratios[middle]
+                                  : 0.5 * (truth_ratios[middle - 1] + truth_ratios[middle]);
   report.realtime_factor = report.end_to_end_pulses_per_s / scan.prf_hz;
   report.trace_api = api;
   report.peak_rss_mb = peak_rss_mb();

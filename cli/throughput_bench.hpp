@@ -55,6 +55,10 @@ struct ThroughputReport {
   double trace_pulses_per_s[3] = {0, 0, 0};  // by TraceApi (per_ray, stream, packet8)
   int repeats = 0;
   double prf_hz = 0.0;
+  // truth_pulses_per_s over end_to_end_pulses_per_s as each round's two back-to-back runs give
+  // it, the median over the rounds: the cost of truth.csv with the machine's slow drifts (which
+  // move the two best rounds apart) paired out.
+  double truth_ratio_paired = 0.0;
 };
 
 [[nodiscard]] ThroughputReport measure_throughput(const ThroughputOptions& options);
