@@ -80,33 +80,49 @@ class NearestPoints {
   std::vector<Segment>& segments_;
 };
 
+// The float nearest `value` that is not below it.
+float rounded_up(double value) {
+  float f = static_cast<float>(value);
+  if (static_cast<double>(f) < value) f = std::nextafter(f, std::numeric_limits<float>::infinity());
+  return f;
+}
+
 }  // namespace
 
-std::vector<FrameTruthModel::ConductorChunk> FrameTruthModel::conductor_chunks(
-    const Conductor& conductor) {
-  std::vector<ConductorChunk> chunks;
-  const auto vertices = static_cast<std::uint32_t>(conductor.points_enu_m.size());
-  if (vertices == 0) return chunks;
+void FrameTruthModel::add_chunks(const Conductor& conductor, std::vector<ConductorChunk>& out) {
+  const std::vector<Eigen::Vector3d>& points = conductor.points_enu_m;
+  const auto vertices = static_cast<std::uint32_t>(points.size());
+  if (vertices == 0) return;
   for (std::uint32_t first = 0;; first += kChunkSegments) {
     ConductorChunk chunk;
     chunk.first = first;
     chunk.last = std::min(first + kChunkSegments, vertices - 1);
     Eigen::AlignedBox3d box;
-    for (std::uint32_t k = chunk.first; k <= chunk.last; ++k) box.extend(conductor.points_enu_m[k]);
+    for (std::uint32_t k = chunk.first; k <= chunk.last; ++k) box.extend(points[k]);
     chunk.centre = box.center();
-    chunk.radius_m = 0.5 * box.diagonal().norm();
+    chunk.radius_m = rounded_up(0.5 * box.diagonal().norm());
+    chunk.chord_a = (points[chunk.first] - chunk.centre).cast<float>();
+    chunk.chord_b = (points[chunk.last] - chunk.centre).cast<float>();
     // The distance from the chord is convex along each segment: the vertices bound it.
-    const Eigen::Vector3d& a = conductor.points_enu_m[chunk.first];
-    const Eigen::Vector3d& b = conductor.points_enu_m[chunk.last];
+    const Eigen::Vector3d a = chunk.centre + chunk.chord_a.cast<double>();
+    const Eigen::Vector3d b = chunk.centre + chunk.chord_b.cast<double>();
+    double deviation = 0.0;
     for (std::uint32_t k = chunk.first; k <= chunk.last; ++k) {
-      const Eigen::Vector3d p = conductor.points_enu_m[k];
+      const Eigen::Vector3d& p = points[k];
       const double t = nearest_on_segment(a - p, b - p);
-      chunk.deviation_m = std::max(chunk.deviation_m, (a - p + t * (b - a)).norm());
+      deviation = std::max(deviation, (a - p + t * (b - a)).norm());
     }
-    chunks.push_back(chunk);
+    chunk.deviation_m = rounded_up(deviation);
+    out.push_back(chunk);
     if (chunk.last + 1 >= vertices) break;
   }
-  return chunks;
+}
+
+ObjectGrid::Sphere FrameTruthModel::sphere_of(std::uint32_t object) const {
+  const std::size_t conductors = conductors_.size();
+  if (object < conductors || object - conductors >= cylinders_.size()) return grid_.sphere(object);
+  const CylinderShape& c = cylinders_[object - conductors];
+  return {Eigen::Vector3d(c.east_m, c.north_m, c.centre_up_m), c.bound_m};
 }
 
 ScanField frame_field(const ScanParams& scan, const FrameSweep& sweep) {
@@ -141,9 +157,22 @@ FrameTruthModel::FrameTruthModel(const Scene& scene, const ScanParams& scan, con
       range_max_m_(timeout_range_m(scan.counter)),
       fibers_(frame_field(scan, FrameSweep{})),
       grid_(scene) {
-  chunks_.reserve(scene.conductors.size());
-  for (const Conductor& conductor : scene.conductors)
-    chunks_.push_back(conductor_chunks(conductor));
+  conductors_.reserve(scene.conductors.size());
+  for (const Conductor& conductor : scene.conductors) {
+    const auto begin = static_cast<std::uint32_t>(chunks_.size());
+    add_chunks(conductor, chunks_);
+    conductors_.push_back({conductor.points_enu_m.data(), begin,
+                           static_cast<std::uint32_t>(chunks_.size())});
+  }
+  cylinders_.reserve(scene.cylinders.size());
+  for (std::size_t c = 0; c < scene.cylinders.size(); ++c) {
+    const Cylinder& cylinder = scene.cylinders[c];
+    const ObjectGrid::Sphere& sphere =
+        grid_.sphere(static_cast<std::uint32_t>(scene.conductors.size() + c));
+    cylinders_.push_back({cylinder.base_enu_m.x(), cylinder.base_enu_m.y(),
+                          cylinder.base_enu_m.z(), cylinder.base_enu_m.z() + cylinder.height_m,
+                          cylinder.radius_m, sphere.centre.z(), sphere.radius_m});
+  }
 }
 
 FrameTruthModel::ObjectView FrameTruthModel::view_of(std::uint32_t object,
@@ -159,14 +188,15 @@ FrameTruthModel::ObjectView FrameTruthModel::view_of(std::uint32_t object,
   std::size_t index = object;
   if (index < scene.conductors.size()) {
     // Chunks of the polyline nearest first, each only while it can still hold a nearer point.
-    const std::vector<Eigen::Vector3d>& points = scene.conductors[index].points_enu_m;
-    const std::vector<ConductorChunk>& chunks = chunks_[index];
+    const Eigen::Vector3d* points = conductors_[index].points;
+    const ConductorChunk* chunks = chunks_.data() + conductors_[index].begin;
     thread_local std::vector<std::pair<double, std::uint32_t>> order;
     order.clear();
-    for (std::uint32_t c = 0; c < chunks.size(); ++c) {
+    for (std::uint32_t c = 0; c < conductors_[index].end - conductors_[index].begin; ++c) {
       // No point of the chunk is nearer than its chord less its deviation.
-      const Eigen::Vector3d a = points[chunks[c].first] - placement.origin_enu_m;
-      const Eigen::Vector3d b = points[chunks[c].last] - placement.origin_enu_m;
+      const Eigen::Vector3d centre = chunks[c].centre - placement.origin_enu_m;
+      const Eigen::Vector3d a = centre + chunks[c].chord_a.cast<double>();
+      const Eigen::Vector3d b = centre + chunks[c].chord_b.cast<double>();
       const double gap = (a + nearest_on_segment(a, b) * (b - a)).norm() - chunks[c].deviation_m;
       order.emplace_back(std::max(0.0, gap), c);
     }
@@ -215,12 +245,12 @@ FrameTruthModel::ObjectView FrameTruthModel::view_of(std::uint32_t object,
   } else if ((index -= scene.conductors.size()) < scene.cylinders.size()) {
     // The nearest point of the solid cylinder in closed form; in the field, the vertical lines of
     // the surface the sensor sees: the nearest and the two silhouettes.
-    const Cylinder& cylinder = scene.cylinders[index];
-    const Eigen::Vector2d axis = cylinder.base_enu_m.head<2>();
+    const CylinderShape& cylinder = cylinders_[index];
+    const Eigen::Vector2d axis(cylinder.east_m, cylinder.north_m);
     const Eigen::Vector2d toward = placement.origin_enu_m.head<2>() - axis;
     const double distance = toward.norm();
-    const double bottom = cylinder.base_enu_m.z();
-    const double top = bottom + cylinder.height_m;
+    const double bottom = cylinder.bottom_m;
+    const double top = cylinder.top_m;
     const Eigen::Vector2d unit =
         distance > 0.0 ? Eigen::Vector2d(toward / distance) : Eigen::Vector2d::UnitX();
     const Eigen::Vector2d facing = distance <= cylinder.radius_m
@@ -231,7 +261,8 @@ FrameTruthModel::ObjectView FrameTruthModel::view_of(std::uint32_t object,
     nearest.overall_src = to_src(closest);
     nearest.overall2 = nearest.overall_src.squaredNorm();
     if (!nearest.overall_inside(field) &&
-        field.may_hold_sphere(to_src(grid_.sphere(object).centre), grid_.sphere(object).radius_m)) {
+        field.may_hold_sphere(to_src({axis.x(), axis.y(), cylinder.centre_up_m}),
+                              cylinder.bound_m)) {
       const auto line_at = [&](const Eigen::Vector2d& xy) {
         nearest.clip_one(to_src({xy.x(), xy.y(), bottom}), to_src({xy.x(), xy.y(), top}), field);
       };
@@ -301,7 +332,8 @@ void FrameTruthModel::frame_truth(std::int64_t frame, const FrameSweep& sweep,
   const auto mark = [&](std::uint32_t object) {
     marked[object / 64] |= std::uint64_t{1} << (object % 64);
   };
-  grid_.objects_near(placement.origin_enu_m.x(), placement.origin_enu_m.y(), range_max_m_, near);
+  grid_.objects_in_cells_near(placement.origin_enu_m.x(), placement.origin_enu_m.y(), range_max_m_,
+                              near);
   for (const std::uint32_t object : near) mark(object);
   for (const FrameTally::ObjectHit& hit : hits) {
     if (hit.object < grid_.size()) {
@@ -315,7 +347,7 @@ void FrameTruthModel::frame_truth(std::int64_t frame, const FrameSweep& sweep,
       const auto object = static_cast<std::uint32_t>(word * 64 + std::countr_zero(bits));
       const std::uint64_t returns = returns_of[object];
       returns_of[object] = 0;
-      const ObjectGrid::Sphere& b = grid_.sphere(object);
+      const ObjectGrid::Sphere b = sphere_of(object);
       if (returns == 0 && (b.centre - placement.origin_enu_m).norm() - b.radius_m > range_max_m_) {
         continue;
       }

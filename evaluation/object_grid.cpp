@@ -88,27 +88,17 @@ ObjectGrid::ObjectGrid(const Scene& scene) {
 
 void ObjectGrid::objects_near(double east_m, double north_m, double reach_m,
                               std::vector<std::uint32_t>& out) const {
-  if (spheres_.empty()) return;
-  const auto cell_of = [&](double value, double low, int cells) {
-    return static_cast<int>(
-        std::clamp(std::floor((value - low) / cell_m_), -1.0, static_cast<double>(cells)));
-  };
-  const int x0 = std::max(0, cell_of(east_m - reach_m, west_m_, cells_x_));
-  const int x1 = std::min(cells_x_ - 1, cell_of(east_m + reach_m, west_m_, cells_x_));
-  const int y0 = std::max(0, cell_of(north_m - reach_m, south_m_, cells_y_));
-  const int y1 = std::min(cells_y_ - 1, cell_of(north_m + reach_m, south_m_, cells_y_));
-  for (int y = y0; y <= y1; ++y) {
-    for (int x = x0; x <= x1; ++x) {
-      const std::size_t cell = static_cast<std::size_t>(y) * static_cast<std::size_t>(cells_x_) +
-                               static_cast<std::size_t>(x);
-      for (std::uint32_t k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {
-        const std::uint32_t object = cell_objects_[k];
-        const Cells& c = cells_[object];
-        // Once per object: in the first cell of its overlap with the queried square.
-        if (x == std::max(x0, c.x0) && y == std::max(y0, c.y0)) out.push_back(object);
-      }
-    }
-  }
+  for_cells_near(east_m, north_m, reach_m, [&](int x, int y, int x0, int y0, std::uint32_t object) {
+    const Cells& c = cells_[object];
+    // Once per object: in the first cell of its overlap with the queried square.
+    if (x == std::max(x0, c.x0) && y == std::max(y0, c.y0)) out.push_back(object);
+  });
+}
+
+void ObjectGrid::objects_in_cells_near(double east_m, double north_m, double reach_m,
+                                       std::vector<std::uint32_t>& out) const {
+  for_cells_near(east_m, north_m, reach_m,
+                 [&](int, int, int, int, std::uint32_t object) { out.push_back(object); });
 }
 
 }  // namespace owsim
