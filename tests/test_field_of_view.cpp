@@ -30,6 +30,19 @@ bool inside_loosely(const ScanField& field, const Eigen::Vector3d& v) {
          angles.beta_deg <= field.beta_max_deg + kDeg;
 }
 
+// A random field: α bounds of either sign (the cones' four cases), β from `beta_lo` to at most
+// 5° with a span up to `beta_span`, range 200-1300 m.
+template <typename Uniform>
+ScanField random_field(const Uniform& uniform, double beta_lo, double beta_span) {
+  ScanField field;
+  field.alpha_min_deg = uniform(-30.0, 10.0);
+  field.alpha_max_deg = field.alpha_min_deg + uniform(0.5, 40.0);
+  field.beta_min_deg = uniform(beta_lo, 5.0);
+  field.beta_max_deg = field.beta_min_deg + uniform(0.5, beta_span);
+  field.range_max_m = uniform(200.0, 1300.0);
+  return field;
+}
+
 TEST(FieldOfView, AnglesInvertTheArcRay) {
   for (const double alpha : {-21.0, -3.5, 0.0, 7.25, 21.0}) {
     for (const double beta : {-18.2, -0.1, 0.0, 12.0, 18.2}) {
@@ -47,12 +60,7 @@ TEST(FieldOfView, ContainsIsTheAnglesAndRangeWithinTheBounds) {
   const auto uniform = [&](double lo, double hi) { return lo + (hi - lo) * unit(rng); };
   int inside = 0, outside = 0;
   for (int trial = 0; trial < 200000; ++trial) {
-    ScanField field;
-    field.alpha_min_deg = uniform(-30.0, 10.0);
-    field.alpha_max_deg = field.alpha_min_deg + uniform(0.5, 40.0);
-    field.beta_min_deg = uniform(-40.0, 5.0);
-    field.beta_max_deg = field.beta_min_deg + uniform(0.5, 40.0);
-    field.range_max_m = uniform(200.0, 1300.0);
+    const ScanField field = random_field(uniform, -40.0, 40.0);
     const FieldOfView fov(field);
     // Anywhere, or (every other trial) near the field, to reach its bounds often.
     const Eigen::Vector3d v =
@@ -106,13 +114,7 @@ TEST(FieldOfView, ClipAgreesWithDenseSamplingOverRandomFieldsAndSegments) {
   constexpr int kSamples = 4001;
   int found_by_both = 0, inside_only_by_clip = 0;
   for (int trial = 0; trial < 3000; ++trial) {
-    ScanField field;
-    // α bounds of either sign (the cones' four cases), β within ±30°.
-    field.alpha_min_deg = uniform(-30.0, 10.0);
-    field.alpha_max_deg = field.alpha_min_deg + uniform(0.5, 40.0);
-    field.beta_min_deg = uniform(-30.0, 5.0);
-    field.beta_max_deg = field.beta_min_deg + uniform(0.5, 30.0);
-    field.range_max_m = uniform(200.0, 1300.0);
+    const ScanField field = random_field(uniform, -30.0, 30.0);  // β within ±30°
     const FieldOfView fov(field);
     const auto point = [&] {
       return Eigen::Vector3d(uniform(-400, 1400), uniform(-500, 500), uniform(-700, 700));

@@ -154,6 +154,15 @@ std::vector<std::uint64_t> fingerprint(const FrameResult& out) {
   return words;
 }
 
+// Level flight at 30 m/s from the scene's sensor towards its first span's middle.
+test::LevelFlight toward_first_span(const test::RandomScene& made) {
+  const Conductor& wire = made.scene.conductors.front();
+  const Eigen::Vector3d middle = wire.points_enu_m[wire.points_enu_m.size() / 2];
+  const Eigen::Vector3d sight = middle - made.sensor_enu_m;
+  const double heading = std::atan2(sight.x(), sight.y()) * 180.0 / std::numbers::pi;
+  return test::LevelFlight(made.sensor_enu_m, heading, 30.0);
+}
+
 TEST(FrameSimulator, FramesAreBitIdenticalAcrossThreadsApisAndOrder) {
   const test::RandomScene made =
       test::random_scene(77, {.spans = 4, .trees = 10, .sloped_grid = true, .max_range_m = 500.0});
@@ -162,12 +171,7 @@ TEST(FrameSimulator, FramesAreBitIdenticalAcrossThreadsApisAndOrder) {
   const EmbreeDevice device;
   const EmbreeScene embree(device, made.scene, params.receiver, made.region,
                            timeout_range_m(params.receiver.counter));
-  // Fly towards the first span's middle.
-  const Conductor& wire = made.scene.conductors.front();
-  const Eigen::Vector3d middle = wire.points_enu_m[wire.points_enu_m.size() / 2];
-  const Eigen::Vector3d sight = middle - made.sensor_enu_m;
-  const double heading = std::atan2(sight.x(), sight.y()) * 180.0 / std::numbers::pi;
-  const test::LevelFlight flight(made.sensor_enu_m, heading, 30.0);
+  const test::LevelFlight flight = toward_first_span(made);
 
   std::vector<std::uint64_t> expected;
   int wire_returns = 0;
@@ -210,11 +214,7 @@ TEST(FrameSimulator, ObjectReturnBitsMarkTheReturnsOnNamedObjects) {
   const EmbreeDevice device;
   const EmbreeScene embree(device, made.scene, params.receiver, made.region,
                            timeout_range_m(params.receiver.counter));
-  const Conductor& wire = made.scene.conductors.front();
-  const Eigen::Vector3d middle = wire.points_enu_m[wire.points_enu_m.size() / 2];
-  const Eigen::Vector3d sight = middle - made.sensor_enu_m;
-  const double heading = std::atan2(sight.x(), sight.y()) * 180.0 / std::numbers::pi;
-  const test::LevelFlight flight(made.sensor_enu_m, heading, 30.0);
+  const test::LevelFlight flight = toward_first_span(made);
   const std::size_t named = named_object_count(made.scene);
   int on_objects = 0, on_ground = 0;
   FrameResult out;
