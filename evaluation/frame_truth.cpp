@@ -297,10 +297,9 @@ FrameTruthModel::ObjectView FrameTruthModel::view_of(std::uint32_t object,
   }
   ObjectView view;
   view.in_view = nearest.inside2 < kInf;
-  const Eigen::Vector3d point_src = view.in_view ? nearest.inside_src : nearest.overall_src;
-  view.range_m = point_src.norm();
-  view.angles = field_angles(point_src);
-  view.point_enu_m = placement.origin_enu_m + placement.enu_from_src * point_src;
+  view.point_src = view.in_view ? nearest.inside_src : nearest.overall_src;
+  view.range_m = view.point_src.norm();
+  view.angles = field_angles(view.point_src);
   return view;
 }
 
@@ -319,6 +318,7 @@ void FrameTruthModel::frame_truth(std::int64_t frame, const FrameSweep& sweep,
            .origin_enu_m) /
       (2.0 * kVelocityStepS);
   const FieldOfView field(frame_field(scan_, sweep, fibers_));
+  const Eigen::Vector3d velocity_src = placement.enu_from_src.transpose() * velocity;
 
   // The objects near the sensor and those hit; returns counted per object in a per-thread table
   // (zeroed again below, so it costs the hits, not the scene); the objects marked in a bit set
@@ -348,7 +348,8 @@ void FrameTruthModel::frame_truth(std::int64_t frame, const FrameSweep& sweep,
       const std::uint64_t returns = returns_of[object];
       returns_of[object] = 0;
       const ObjectGrid::Sphere b = sphere_of(object);
-      if (returns == 0 && (b.centre - placement.origin_enu_m).norm() - b.radius_m > range_max_m_) {
+      if (returns == 0 && (b.centre - placement.origin_enu_m).squaredNorm() >
+                              (range_max_m_ + b.radius_m) * (range_max_m_ + b.radius_m)) {
         continue;
       }
       const ObjectView view = view_of(object, placement, field);
@@ -360,8 +361,8 @@ void FrameTruthModel::frame_truth(std::int64_t frame, const FrameSweep& sweep,
       row.beta_deg = view.angles.beta_deg;
       row.in_view = view.in_view;
       row.returns = returns;
-      const Eigen::Vector3d toward = view.point_enu_m - placement.origin_enu_m;
-      row.closing_speed_mps = view.range_m > 0.0 ? velocity.dot(toward) / view.range_m : 0.0;
+      row.closing_speed_mps =
+          view.range_m > 0.0 ? velocity_src.dot(view.point_src) / view.range_m : 0.0;
     }
   }
 }

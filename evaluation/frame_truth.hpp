@@ -53,7 +53,7 @@ class FrameTruthModel final : public FrameTruthSource {
     double range_m = 0.0;
     FieldAngles angles;
     bool in_view = false;
-    Eigen::Vector3d point_enu_m = Eigen::Vector3d::Zero();
+    Eigen::Vector3d point_src = Eigen::Vector3d::Zero();  // that point, in sensor axes
   };
   [[nodiscard]] ObjectView view_of(std::uint32_t object, const SensorPlacement& placement,
                                    const FieldOfView& field) const;

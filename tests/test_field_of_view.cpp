@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <random>
 
 #include "evaluation/field_of_view.hpp"
@@ -51,6 +52,32 @@ TEST(FieldOfView, AnglesInvertTheArcRay) {
       EXPECT_NEAR(angles.beta_deg, beta, 1e-12);
     }
   }
+}
+
+TEST(FieldOfView, AnglesAreTheArcsineAndTheFourQuadrantArctangent) {
+  // field_angles takes each angle as the arctangent of one quotient; the definition is
+  // α = asin(a / |v|), β = atan2(b, c) (SENSOR-SPEC §4), over every direction, the axes included.
+  constexpr double kDegPerRad = 180.0 / std::numbers::pi;
+  const auto expect_definition = [&](const Eigen::Vector3d& v) {
+    const FieldAngles angles = field_angles(v);
+    EXPECT_NEAR(angles.alpha_deg, std::asin(v.y() / v.norm()) * kDegPerRad, 1e-12) << v.transpose();
+    EXPECT_NEAR(angles.beta_deg, std::atan2(v.z(), v.x()) * kDegPerRad, 1e-12) << v.transpose();
+  };
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> uniform(-1500.0, 1500.0);
+  for (int trial = 0; trial < 100000; ++trial) {
+    expect_definition({uniform(rng), 0.1 * uniform(rng), uniform(rng)});
+  }
+  for (const double x : {-2.0, -0.0, 0.0, 3.0}) {
+    for (const double y : {-5.0, -0.0, 0.0, 1.0}) {
+      for (const double z : {-7.0, -0.0, 0.0, 4.0}) {
+        if (x != 0.0 || y != 0.0 || z != 0.0) expect_definition({x, y, z});
+      }
+    }
+  }
+  const FieldAngles origin = field_angles(Eigen::Vector3d::Zero());
+  EXPECT_EQ(origin.alpha_deg, 0.0);
+  EXPECT_EQ(origin.beta_deg, 0.0);
 }
 
 TEST(FieldOfView, ContainsIsTheAnglesAndRangeWithinTheBounds) {
