@@ -33,13 +33,18 @@ const TruthFixture& truth_fixture() {
   return fixture;
 }
 
+// What is written between frames to empty the caches: 64 MB (arg 1) or 4 MB (arg 2).
+std::size_t cold_bytes(std::int64_t arg) { return std::size_t{arg == 1 ? 64U : 4U} << 20; }
+
 // Arg 0: the same frame again and again, its data in the cache; arg 1: with 64 MB written
 // between frames (untimed), as in a flight, where the tracer's data fills the cache between one
-// frame's ground truth and the next: then the bytes the ground truth reads are what it costs.
+// frame's ground truth and the next: then the bytes the ground truth reads are what it costs
+// (`owsim run` on the corridor spends about this much a frame on it); arg 2: with 4 MB written,
+// the L2 cache emptied but not the L3.
 void BM_FrameTruth(benchmark::State& state) {
   const TruthFixture& f = truth_fixture();
   const bool cold = state.range(0) >= 1;
-  std::vector<char> other(cold ? std::size_t{state.range(0) == 1 ? 64 : 4} << 20 : 0);
+  std::vector<char> other(cold ? cold_bytes(state.range(0)) : 0);
   FrameTruth truth;
   for (auto _ : state) {
     if (cold) {
@@ -57,11 +62,11 @@ void BM_FrameTruth(benchmark::State& state) {
 BENCHMARK(BM_FrameTruth)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond);
 
 // A frame's ground truth and its rows, as owsim run makes them (the cost `owsim bench`'s
-// "words + truth" line adds): arg 0 warm, arg 1 with 64 MB written between frames.
+// "words + truth" line adds); the arguments as BM_FrameTruth's.
 void BM_FrameTruthAndRows(benchmark::State& state) {
   const TruthFixture& f = truth_fixture();
   const bool cold = state.range(0) >= 1;
-  std::vector<char> other(cold ? std::size_t{state.range(0) == 1 ? 64 : 4} << 20 : 0);
+  std::vector<char> other(cold ? cold_bytes(state.range(0)) : 0);
   FrameTruth truth;
   std::string text;
   for (auto _ : state) {

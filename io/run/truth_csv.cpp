@@ -10,49 +10,59 @@
 namespace owsim {
 namespace {
 
-// A row's characters besides the frame, time and object cells, at most: the class (8), five
-// numbers (kCsvNumberMaxChars each, far more than a real value takes), in_view, an integer (24)
-// and the commas.
-constexpr std::size_t kRowMaxChars = 8 + 5 * kCsvNumberMaxChars + 1 + 24 + 16;
+// A row's characters after its object and class cells, at most: five numbers (kCsvNumberMaxChars
+// each, far more than a real value takes), in_view, an integer (24) and the commas.
+constexpr std::size_t kRowTailMaxChars = 5 * kCsvNumberMaxChars + 1 + 24 + 16;
+// Rows are built in a block on the stack and appended a block at a time: one append per ~100
+// rows, not three per row.
+constexpr std::size_t kBlockChars = 16384;
 
 }  // namespace
 
 TruthCsvRows::TruthCsvRows(const Scene& scene) {
   const std::size_t count = named_object_count(scene);
-  object_cells_.reserve(count);
-  classes_.reserve(count);
+  prefix_ends_.reserve(count);
   for (std::size_t object = 0; object < count; ++object) {
-    object_cells_.push_back(csv_cell(named_object_id(scene, object)));
-    classes_.push_back(named_object_class(scene, object));
+    prefixes_ += csv_cell(named_object_id(scene, object));
+    prefixes_ += ',';
+    prefixes_ += to_string(named_object_class(scene, object));
+    prefixes_ += ',';
+    prefix_ends_.push_back(prefixes_.size());
   }
 }
 
 void TruthCsvRows::encode(const FrameTruth& truth, std::string& out) const {
   for (const TruthRow& row : truth.rows) {
-    if (row.object >= object_cells_.size()) {
+    if (row.object >= prefix_ends_.size()) {
       throw Error("truth.csv: object index " + std::to_string(row.object) +
-                  " is not one of the scene's " + std::to_string(object_cells_.size()) +
+                  " is not one of the scene's " + std::to_string(prefix_ends_.size()) +
                   " objects");
     }
   }
-  // The frame and time cells are the same on every row: formatted once. The cells after the
-  // object's are written on the stack and appended, so the string is never zero-filled to a bound
-  // (a row's bound is ~2 kB for ~80 characters written).
+  // The frame and time cells are the same on every row: formatted once.
   char head[2 * kCsvNumberMaxChars + 2];
   char* at = write_csv_integer(head, truth.frame);
   *at++ = ',';
   at = write_csv_fixed(at, truth.time_s, 9);
   *at++ = ',';
   const std::string_view frame_cells(head, static_cast<std::size_t>(at - head));
-  char tail[kRowMaxChars];
+  char block[kBlockChars];
+  char* write = block;
   for (const TruthRow& row : truth.rows) {
-    out += frame_cells;
-    out += object_cells_[row.object];
-    char* write = tail;
-    *write++ = ',';
-    const std::string_view surface = to_string(classes_[row.object]);
-    write = std::copy(surface.begin(), surface.end(), write);
-    *write++ = ',';
+    const std::size_t first = row.object == 0 ? 0 : prefix_ends_[row.object - 1];
+    const std::string_view object_cells(prefixes_.data() + first, prefix_ends_[row.object] - first);
+    const std::size_t most = frame_cells.size() + object_cells.size() + kRowTailMaxChars;
+    if (static_cast<std::size_t>(block + kBlockChars - write) < most) {
+      out.append(block, write);
+      write = block;
+    }
+    if (most <= kBlockChars) {
+      write = std::copy(frame_cells.begin(), frame_cells.end(), write);
+      write = std::copy(object_cells.begin(), object_cells.end(), write);
+    } else {  // an object id longer than a block: its cells go straight out
+      out += frame_cells;
+      out += object_cells;
+    }
     write = write_csv_fixed(write, row.range_m, 3);
     *write++ = ',';
     write = write_csv_fixed(write, row.alpha_deg, 4);
@@ -70,8 +80,8 @@ void TruthCsvRows::encode(const FrameTruth& truth, std::string& out) const {
       if (std::isfinite(time_to_reach_s)) write = write_csv_fixed(write, time_to_reach_s, 3);
     }
     *write++ = '\n';
-    out.append(tail, write);
   }
+  out.append(block, write);
 }
 
 TruthCsvWriter::TruthCsvWriter(AtomicOutputFile file, std::uint64_t rows_written)

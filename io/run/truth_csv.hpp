@@ -35,8 +35,10 @@ class TruthCsvRows {
   void encode(const FrameTruth& truth, std::string& out) const;
 
  private:
-  std::vector<std::string> object_cells_;
-  std::vector<SurfaceClass> classes_;
+  // Each named object's "object,class," cells, one after another in one string (a frame's rows
+  // read ~500 of them): object k's end at prefix_ends_[k], its start at the previous end.
+  std::string prefixes_;
+  std::vector<std::size_t> prefix_ends_;
 };
 
 class TruthCsvWriter {
