@@ -33,8 +33,23 @@ const TruthFixture& truth_fixture() {
   return fixture;
 }
 
-// What is written between frames to empty the caches: 64 MB (arg 1) or 4 MB (arg 2).
-std::size_t cold_bytes(std::int64_t arg) { return std::size_t{arg == 1 ? 64U : 4U} << 20; }
+// Empties the caches between frames, untimed, by writing 64 MB (arg 1) or 4 MB (arg 2); arg 0
+// leaves them warm.
+class CacheEmptier {
+ public:
+  explicit CacheEmptier(std::int64_t arg)
+      : other_(arg == 0 ? 0 : std::size_t{arg == 1 ? 64U : 4U} << 20) {}
+  void operator()(benchmark::State& state) {
+    if (other_.empty()) return;
+    state.PauseTiming();
+    for (std::size_t i = 0; i < other_.size(); i += 64) ++other_[i];
+    benchmark::ClobberMemory();
+    state.ResumeTiming();
+  }
+
+ private:
+  std::vector<char> other_;
+};
 
 // Arg 0: the same frame again and again, its data in the cache; arg 1: with 64 MB written
 // between frames (untimed), as in a flight, where the tracer's data fills the cache between one
@@ -43,16 +58,10 @@ std::size_t cold_bytes(std::int64_t arg) { return std::size_t{arg == 1 ? 64U : 4
 // the L2 cache emptied but not the L3.
 void BM_FrameTruth(benchmark::State& state) {
   const TruthFixture& f = truth_fixture();
-  const bool cold = state.range(0) >= 1;
-  std::vector<char> other(cold ? cold_bytes(state.range(0)) : 0);
+  CacheEmptier empty_caches(state.range(0));
   FrameTruth truth;
   for (auto _ : state) {
-    if (cold) {
-      state.PauseTiming();
-      for (std::size_t i = 0; i < other.size(); i += 64) ++other[i];
-      benchmark::ClobberMemory();
-      state.ResumeTiming();
-    }
+    empty_caches(state);
     f.model.frame_truth(f.fixture.frame, f.fixture.traced.sweep, f.tally.object_hits, truth);
     benchmark::DoNotOptimize(truth.rows.data());
   }
@@ -65,17 +74,11 @@ BENCHMARK(BM_FrameTruth)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond);
 // "words + truth" line adds); the arguments as BM_FrameTruth's.
 void BM_FrameTruthAndRows(benchmark::State& state) {
   const TruthFixture& f = truth_fixture();
-  const bool cold = state.range(0) >= 1;
-  std::vector<char> other(cold ? cold_bytes(state.range(0)) : 0);
+  CacheEmptier empty_caches(state.range(0));
   FrameTruth truth;
   std::string text;
   for (auto _ : state) {
-    if (cold) {
-      state.PauseTiming();
-      for (std::size_t i = 0; i < other.size(); i += 64) ++other[i];
-      benchmark::ClobberMemory();
-      state.ResumeTiming();
-    }
+    empty_caches(state);
     text.clear();
     f.model.frame_truth(f.fixture.frame, f.fixture.traced.sweep, f.tally.object_hits, truth);
     f.rows.encode(truth, text);
