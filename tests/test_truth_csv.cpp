@@ -26,11 +26,10 @@ std::string fixed(double value, int decimals) {
 // The row as INTERFACE.md spells it, from printf and the id quoted by hand.
 std::string expected_row(const FrameTruth& truth, const TruthRow& row, const std::string& cell,
                          const char* surface) {
-  std::string text = std::to_string(truth.frame) + "," + fixed(truth.time_s, 9) + "," + cell +
-                     "," + surface + "," + fixed(row.range_m, 3) + "," +
-                     fixed(row.alpha_deg, 4) + "," + fixed(row.beta_deg, 4) + "," +
-                     (row.in_view ? "1" : "0") + "," + std::to_string(row.returns) + "," +
-                     fixed(row.closing_speed_mps, 3) + ",";
+  std::string text = std::to_string(truth.frame) + "," + fixed(truth.time_s, 9) + "," + cell + "," +
+                     surface + "," + fixed(row.range_m, 3) + "," + fixed(row.alpha_deg, 4) + "," +
+                     fixed(row.beta_deg, 4) + "," + (row.in_view ? "1" : "0") + "," +
+                     std::to_string(row.returns) + "," + fixed(row.closing_speed_mps, 3) + ",";
   if (row.closing_speed_mps > 0.0) text += fixed(row.range_m / row.closing_speed_mps, 3);
   return text + "\n";
 }
@@ -63,7 +62,7 @@ TEST(TruthCsv, RowsAreTheCellsInFixedDecimalsWithTheIdsQuoted) {
   }
   std::string text = "kept,";
   rows.encode(truth, text);
-  EXPECT_EQ(text.substr(0, 5), "kept,");  // appended to what was there
+  EXPECT_EQ(text.substr(0, 5), "kept,");    // appended to what was there
   EXPECT_TRUE(text.substr(5) == expected);  // (no 40 kB diff printed)
   EXPECT_EQ(text.size(), expected.size() + 5);
 

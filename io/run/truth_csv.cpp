@@ -35,8 +35,7 @@ void TruthCsvRows::encode(const FrameTruth& truth, std::string& out) const {
   for (const TruthRow& row : truth.rows) {
     if (row.object >= prefix_ends_.size()) {
       throw Error("truth.csv: object index " + std::to_string(row.object) +
-                  " is not one of the scene's " + std::to_string(prefix_ends_.size()) +
-                  " objects");
+                  " is not one of the scene's " + std::to_string(prefix_ends_.size()) + " objects");
     }
   }
   // The frame and time cells are the same on every row: formatted once.
