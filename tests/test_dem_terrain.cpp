@@ -252,5 +252,24 @@ TEST_F(DemRuns, TheModuleRefusesAVrtWhateverItsPath) {
   }
 }
 
+// Found by fuzzing (fuzz_scene_files): a GeoTIFF whose geographic keys carry EPSG:4342, the code
+// of a geocentric CRS. PROJ 9.1 crashed on it while choosing the transformation to WGS-84; the
+// module refuses it first, in one line.
+TEST_F(DemRuns, ACrsUnderTheCodeOfAnotherKindIsRefused) {
+  fs::copy_file(fs::path(OWSIM_SOURCE_DIR) / "tests/data/dem_geocentric_code.tif",
+                dir_ / "geocentric_code.tif");
+  const LocalFrame frame({48.6881, 10.8447, 450.0});
+  try {
+    (void)read_dem_terrain(dir_ / "geocentric_code.tif", frame, std::nullopt);
+    FAIL() << "read";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(
+                  "declares a geographic CRS under EPSG:4342, the code of a geocentric CRS"),
+              std::string::npos)
+        << e.what();
+    EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace owsim

@@ -22,6 +22,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <exception>
 #include <fstream>
@@ -129,6 +130,38 @@ Dataset open_confined(const char* path, unsigned kind, const char* const* driver
   throw std::runtime_error("GDAL cannot open it as " + driver_list(drivers) + reason);
 }
 
+// The kind of a CRS, in words.
+std::string crs_kind(OGRSpatialReferenceH crs) {
+  if (OSRIsCompound(crs)) return "compound";
+  if (OSRIsProjected(crs)) return "projected";
+  if (OSRIsGeocentric(crs)) return "geocentric";
+  if (OSRIsGeographic(crs)) return "geographic";
+  if (OSRIsVertical(crs)) return "vertical";
+  return "other";
+}
+
+// A CRS that carries the EPSG code of another kind of CRS (a GeoTIFF's geographic keys under a
+// geocentric CRS's code, found by fuzzing): PROJ looks the code up while it chooses a
+// transformation and crashes on what it finds (PROJ 9.1). Refused by name before that. A code
+// PROJ does not know is left to the transformation, which fails cleanly.
+void require_code_of_its_kind(OGRSpatialReferenceH crs) {
+  const char* authority = OSRGetAuthorityName(crs, nullptr);
+  const char* code = OSRGetAuthorityCode(crs, nullptr);
+  if (authority == nullptr || code == nullptr || !EQUAL(authority, "EPSG")) return;
+  char* end = nullptr;
+  const long number = std::strtol(code, &end, 10);
+  if (end == code || *end != '\0' || number <= 0 || number > 999999) {
+    throw std::runtime_error("declares a CRS with EPSG code '" + std::string(code) +
+                             "', which is not an EPSG code");
+  }
+  const Srs by_code(OSRNewSpatialReference(nullptr));
+  if (OSRImportFromEPSG(by_code.get(), static_cast<int>(number)) != OGRERR_NONE) return;
+  if (crs_kind(crs) != crs_kind(by_code.get())) {
+    throw std::runtime_error("declares a " + crs_kind(crs) + " CRS under EPSG:" + code +
+                             ", the code of a " + crs_kind(by_code.get()) + " CRS");
+  }
+}
+
 void read_dem(const char* path, bool whole_file, double lon_min, double lat_min, double lon_max,
               double lat_max, owsim_dem_begin begin, owsim_dem_rows rows, void* sink_context) {
   GDALAllRegister();
@@ -144,6 +177,7 @@ void read_dem(const char* path, bool whole_file, double lon_min, double lat_min,
   }
   OGRSpatialReferenceH declared = GDALGetSpatialRef(dataset.get());
   if (declared == nullptr) throw std::runtime_error("declares no CRS");
+  require_code_of_its_kind(declared);
   const Srs source(OSRClone(declared));
   OSRSetAxisMappingStrategy(source.get(), OAMS_TRADITIONAL_GIS_ORDER);
   const Srs wgs84(OSRNewSpatialReference(nullptr));
@@ -319,6 +353,7 @@ void read_lines(const char* path, owsim_line_sink sink, void* sink_context,
     }
     Transform to_wgs;
     {
+      require_code_of_its_kind(declared);
       const Srs source(OSRClone(declared));
       OSRSetAxisMappingStrategy(source.get(), OAMS_TRADITIONAL_GIS_ORDER);
       to_wgs.reset(OCTNewCoordinateTransformation(source.get(), wgs84.get()));
