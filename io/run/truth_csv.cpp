@@ -21,21 +21,22 @@ constexpr std::size_t kBlockChars = 16384;
 
 TruthCsvRows::TruthCsvRows(const Scene& scene) {
   const std::size_t count = named_object_count(scene);
-  prefix_ends_.reserve(count);
+  prefix_starts_.reserve(count + 1);
+  prefix_starts_.push_back(0);
   for (std::size_t object = 0; object < count; ++object) {
     prefixes_ += csv_cell(named_object_id(scene, object));
     prefixes_ += ',';
     prefixes_ += to_string(named_object_class(scene, object));
     prefixes_ += ',';
-    prefix_ends_.push_back(prefixes_.size());
+    prefix_starts_.push_back(prefixes_.size());
   }
 }
 
 void TruthCsvRows::encode(const FrameTruth& truth, std::string& out) const {
   for (const TruthRow& row : truth.rows) {
-    if (row.object >= prefix_ends_.size()) {
+    if (row.object + std::size_t{1} >= prefix_starts_.size()) {
       throw Error("truth.csv: object index " + std::to_string(row.object) +
-                  " is not one of the scene's " + std::to_string(prefix_ends_.size()) + " objects");
+                  " is not one of the scene's " + std::to_string(prefix_starts_.size() - 1) + " objects");
     }
   }
   // The frame and time cells are the same on every row: formatted once.
@@ -48,8 +49,9 @@ void TruthCsvRows::encode(const FrameTruth& truth, std::string& out) const {
   char block[kBlockChars];
   char* write = block;
   for (const TruthRow& row : truth.rows) {
-    const std::size_t first = row.object == 0 ? 0 : prefix_ends_[row.object - 1];
-    const std::string_view object_cells(prefixes_.data() + first, prefix_ends_[row.object] - first);
+    const std::size_t first = prefix_starts_[row.object];
+    const std::string_view object_cells(prefixes_.data() + first,
+                                        prefix_starts_[row.object + 1] - first);
     const std::size_t most = frame_cells.size() + object_cells.size() + kRowTailMaxChars;
     if (static_cast<std::size_t>(block + kBlockChars - write) < most) {
       out.append(block, write);

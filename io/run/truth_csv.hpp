@@ -36,9 +36,9 @@ class TruthCsvRows {
 
  private:
   // Each named object's "object,class," cells, one after another in one string (a frame's rows
-  // read ~500 of them): object k's end at prefix_ends_[k], its start at the previous end.
+  // read ~500 of them): object k's from prefix_starts_[k] to prefix_starts_[k + 1].
   std::string prefixes_;
-  std::vector<std::size_t> prefix_ends_;
+  std::vector<std::size_t> prefix_starts_;
 };
 
 class TruthCsvWriter {
