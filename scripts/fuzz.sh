@@ -3,14 +3,15 @@
 # build-fuzz/ and runs each for a bounded time from its seed corpus (fuzz/corpus/<target>/),
 # printing the executions each ran. Exits non-zero when a target crashes; the crashing input is
 # left in build-fuzz/findings/<target>/ (make it a regression test in the reader's test file).
+# Line tables only, as scripts/sanitize.sh: crash reports name file and line.
 # OWSIM_FUZZ_SECONDS sets the time per target (default 20).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build="${OWSIM_FUZZ_BUILD_DIR:-$root/build-fuzz}"
 seconds="${OWSIM_FUZZ_SECONDS:-20}"
-flags="-O1 -g -fno-omit-frame-pointer -fsanitize=fuzzer-no-link,address,undefined"
+flags="-O1 -gline-tables-only -fno-omit-frame-pointer -fsanitize=fuzzer-no-link,address,undefined"
 flags+=" -fno-sanitize-recover=undefined"
-cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Debug \
+cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG= \
   -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_CXX_FLAGS="$flags" \
   -DOWSIM_BUILD_TESTS=OFF -DOWSIM_BUILD_BENCH=OFF -DOWSIM_BUILD_FUZZ=ON >/dev/null
 targets=()

@@ -6,6 +6,9 @@
 #   python3-owsim_<version>_amd64.deb  the Python module
 # Built in their own tree (build/package-build, prefix /usr, every optional module, no tests);
 # install with `sudo apt-get install ./build/packages/*.deb`.
+# OWSIM_PACKAGE_BUILD_DIR=build packages from the test build instead (what CI does: the same
+# Release build; reconfigured for prefix /usr without tests, only the unit that compiles the
+# prefix in rebuilds and what links it relinks).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build="${OWSIM_PACKAGE_BUILD_DIR:-$root/build/package-build}"

@@ -3,15 +3,18 @@
 # build-asan/ and runs them: the C ABI's tests through the instrumented libowsim_c.so, the Python
 # module's in /usr/bin/python3 with the sanitizer runtimes preloaded (tests/CMakeLists.txt).
 # Embree, TBB and the other system libraries are not instrumented.
+# Line tables only (-g1; Debug's own -g is dropped): the sanitizers' stack traces still name file
+# and line, and the build takes ~23 % less time (4 heavy units: 31-33 s with -g, 24-25 s with -g1).
 # OWSIM_SANITIZE_EXCLUDE is a ctest regex of tests left out (default: none).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build="${OWSIM_SANITIZE_BUILD_DIR:-$root/build-asan}"
-flags="-O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=undefined"
+flags="-O1 -g1 -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=undefined"
 link="-fsanitize=address,undefined"
-cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Debug \
-  -DCMAKE_C_FLAGS="$flags" -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="$link" \
-  -DCMAKE_SHARED_LINKER_FLAGS="$link" -DCMAKE_MODULE_LINKER_FLAGS="$link" \
+cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_C_FLAGS_DEBUG= \
+  -DCMAKE_CXX_FLAGS_DEBUG= -DCMAKE_C_FLAGS="$flags" -DCMAKE_CXX_FLAGS="$flags" \
+  -DCMAKE_EXE_LINKER_FLAGS="$link" -DCMAKE_SHARED_LINKER_FLAGS="$link" \
+  -DCMAKE_MODULE_LINKER_FLAGS="$link" \
   -DOWSIM_REQUIRE_ALL=ON -DOWSIM_BUILD_BENCH=OFF >/dev/null
 cmake --build "$build" -j "$(nproc)"
 # Leak checking is on: the whole suite runs leak-free, TBB and Embree included. The dynamic TLS of
