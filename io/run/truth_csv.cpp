@@ -36,7 +36,8 @@ void TruthCsvRows::encode(const FrameTruth& truth, std::string& out) const {
   for (const TruthRow& row : truth.rows) {
     if (row.object + std::size_t{1} >= prefix_starts_.size()) {
       throw Error("truth.csv: object index " + std::to_string(row.object) +
-                  " is not one of the scene's " + std::to_string(prefix_starts_.size() - 1) + " objects");
+                  " is not one of the scene's " + std::to_string(prefix_starts_.size() - 1) +
+                  " objects");
     }
   }
   // The frame and time cells are the same on every row: formatted once.
