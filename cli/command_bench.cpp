@@ -26,6 +26,7 @@ nlohmann::ordered_json to_json(const ThroughputReport& report) {
           {"points_pulses_per_s", report.points_pulses_per_s},
           {"truth_pulses_per_s", report.truth_pulses_per_s},
           {"truth_ratio_paired", report.truth_ratio_paired},
+          {"noise_off_pulses_per_s", report.noise_off_pulses_per_s},
           {"realtime_factor", report.realtime_factor},
           {"trace_api", std::string(to_string(report.trace_api))},
           {"peak_rss_mb", report.peak_rss_mb},
@@ -64,6 +65,10 @@ void print_text(const ThroughputReport& r) {
       "paired by round (median)\n",
       r.truth_pulses_per_s, ratio(r.truth_pulses_per_s, r.end_to_end_pulses_per_s),
       r.truth_ratio_paired);
+  fmt::print(
+      "  noise off      {:>12.0f} pulses/s  end-to-end with the receiver's noise is {:.2f} of it "
+      "(sensor.receiver.noise: off)\n",
+      r.noise_off_pulses_per_s, ratio(r.end_to_end_pulses_per_s, r.noise_off_pulses_per_s));
   fmt::print("  brute force    {:>12.0f} pulses/s  ({} pulses traced), BVH trace is {:.0f}x\n",
              r.brute_force_pulses_per_s, r.brute_force_pulses,
              ratio(r.trace_only_pulses_per_s, r.brute_force_pulses_per_s));

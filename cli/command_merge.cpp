@@ -50,7 +50,8 @@ void add_merge_command(CLI::App& app, CommandResult& /*result*/) {
        "the merged recording (same format)"});
   command->add_option("--seed", options->overrides.seed, "override the scenario's seed")
       ->check(seed_number());
-  command->add_flag("--no-noise", options->overrides.no_noise, "range noise off (σ = 0)");
+  command->add_flag("--no-noise", options->overrides.no_noise,
+                    "range noise and receiver noise off");
   command->footer(
       "Where a synthetic return is nearer than the recorded first return (or the pulse had none) "
       "its count goes to counter 1 and the recorded return moves to counter 2 (MilOWS); a "

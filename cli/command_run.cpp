@@ -99,7 +99,8 @@ void add_run_command(CLI::App& app, CommandResult& /*result*/) {
   command->add_option("--outputs", options->outputs,
                       "comma list of d64, points (or csv, las, ply on their own), trajectory, "
                       "summary, truth, quicklook (default: all)");
-  command->add_flag("--no-noise", options->simulation.no_noise, "range noise off (σ = 0)");
+  command->add_flag("--no-noise", options->simulation.no_noise,
+                    "range noise and receiver noise off");
   command->add_flag("--resume", options->run.resume,
                     "continue an interrupted run (same options) from its last complete frame");
   command->add_flag("--quiet", options->quiet, "no progress line");

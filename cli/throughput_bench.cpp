@@ -193,6 +193,9 @@ ThroughputReport measure_throughput(const ThroughputOptions& options) {
   const TraceApi api = kTraceApis[winner];
   const FrameTracer tracer(setup.embree_scene, api);
   const FrameSimulator simulator(setup.simulator.params(), setup.embree_scene, api);
+  FrameSimulatorParams deterministic = setup.simulator.params();
+  deterministic.receiver.noise.on = false;
+  const FrameSimulator noise_off(deterministic, setup.embree_scene, api);
 
   // End-to-end on every thread and on one, interleaved with trace-only of the winning form.
   double end_to_end_best = kNever;
@@ -200,6 +203,7 @@ ThroughputReport measure_throughput(const ThroughputOptions& options) {
   double las_best = kNever;
   double points_best = kNever;
   double truth_best = kNever;
+  double noise_off_best = kNever;
   std::vector<double> truth_ratios;  // per round: the words' seconds over words + truth's
   tbb::task_arena one_thread(1);
   for (int round = 1; round <= options.repeats; ++round) {
@@ -230,6 +234,8 @@ ThroughputReport measure_throughput(const ThroughputOptions& options) {
         std::min(single_thread_best,
                  one_thread.execute([&] { return end_to_end_seconds(simulator, setup, 1); }));
     progress.note("single thread", round, options.repeats, rate(single_thread_best));
+    noise_off_best = std::min(noise_off_best, end_to_end_seconds(noise_off, setup, threads));
+    progress.note("receiver noise off", round, options.repeats, rate(noise_off_best));
     las_best = std::min(las_best, end_to_end_seconds(simulator, setup, threads, {OutputKind::las}));
     progress.note("points.las", round, options.repeats, rate(las_best));
     points_best = std::min(
@@ -260,6 +266,7 @@ ThroughputReport measure_throughput(const ThroughputOptions& options) {
   report.las_pulses_per_s = rate(las_best);
   report.points_pulses_per_s = rate(points_best);
   report.truth_pulses_per_s = rate(truth_best);
+  report.noise_off_pulses_per_s = rate(noise_off_best);
   std::sort(truth_ratios.begin(), truth_ratios.end());
   const std::size_t middle = truth_ratios.size() / 2;
   report.truth_ratio_paired = truth_ratios.size() % 2 == 1

@@ -47,6 +47,9 @@ struct ThroughputReport {
   double las_pulses_per_s = 0.0;     // --outputs las
   double points_pulses_per_s = 0.0;  // --outputs points (csv, las, ply)
   double truth_pulses_per_s = 0.0;   // --outputs d64,truth: the words with the ground truth
+  // End-to-end with sensor.receiver.noise off (SENSOR-SPEC §11's statistics' cost is end-to-end
+  // over this): the deterministic receiver of §7 on the same scene.
+  double noise_off_pulses_per_s = 0.0;
   double realtime_factor = 0.0;      // end_to_end / the sensor's PRF
   TraceApi trace_api = TraceApi::stream;
   double peak_rss_mb = 0.0;

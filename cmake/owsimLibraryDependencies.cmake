@@ -17,3 +17,17 @@ if(NOT TARGET owsim::GeographicLib)
     INTERFACE_INCLUDE_DIRECTORIES "${GeographicLib_INCLUDE_DIRS}"
     INTERFACE_LINK_LIBRARIES "${GeographicLib_LIBRARIES}")
 endif()
+
+# libnova (Debian's libnova-dev ships no pkg-config or CMake file): the sun's position for a
+# scenario's `sun: {time_utc}` (io/scenario/solar_position.hpp), linked by io/scenario only.
+find_library(OWSIM_LIBNOVA_LIBRARY NAMES nova)
+find_path(OWSIM_LIBNOVA_INCLUDE_DIR libnova/solar.h)
+if(NOT OWSIM_LIBNOVA_LIBRARY OR NOT OWSIM_LIBNOVA_INCLUDE_DIR)
+  message(FATAL_ERROR "owsim: needs libnova (libnova-dev; scripts/setup.sh core)")
+endif()
+if(NOT TARGET owsim::libnova)
+  add_library(owsim::libnova INTERFACE IMPORTED)
+  set_target_properties(owsim::libnova PROPERTIES
+    INTERFACE_INCLUDE_DIRECTORIES "${OWSIM_LIBNOVA_INCLUDE_DIR}"
+    INTERFACE_LINK_LIBRARIES "${OWSIM_LIBNOVA_LIBRARY}")
+endif()

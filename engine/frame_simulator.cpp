@@ -22,7 +22,8 @@ FrameSimulator::FrameSimulator(const FrameSimulatorParams& params, const EmbreeS
                                TraceApi api)
     : params_(params),
       ray_builder_(params.scan, params.mount),
-      tracer_(scene, api),
+      noise_(receiver_noise(params.receiver)),
+      tracer_(scene, api, noise_),
       weather_(scene.scene().fog, scene.scene().fog_backscatter_ratio_sr,
                fog_object_index(scene.scene()), params.receiver),
       named_objects_(named_object_count(scene.scene())) {
@@ -61,6 +62,7 @@ void FrameSimulator::receive_range(FrameResult& out, std::span<const PulseCandid
   const ReceiverParams& receiver = params_.receiver;
   std::array<Candidate, PulseCandidates::kMaxWires + 1> gathered;
   WeatherCandidates weathered;
+  PathBusyIntervals busy;
   // Pulse k's returns, by the cheapest path that gives them.
   const auto receive_pulse = [&](int k, std::size_t index, PulseReturns& returns) {
     if (out.active[index] == 0) {
@@ -71,6 +73,25 @@ void FrameSimulator::receive_range(FrameResult& out, std::span<const PulseCandid
       return;
     }
     const PulseCandidates& met = candidates[static_cast<std::size_t>(k - begin)];
+    if (noise_.on()) {  // SENSOR-SPEC §11: every pulse may hold false returns
+      PulseNoise noise{&noise_,
+                       met.has_solid() ? met.solid_background() : noise_.sky_background(), {}};
+      if (!weather_.empty()) {
+        const std::span<Candidate> weathered_met =
+            weathered_candidates(weather_, out.rays[index], met, receiver, weathered, &busy);
+        noise.busy = busy.span();
+        select_returns(weathered_met, receiver, params_.seed, out.frame, k, returns, noise);
+      } else if (met.wires().empty()) {
+        if (met.has_solid()) {
+          select_single_return(met.solid(), receiver, params_.seed, out.frame, k, returns, noise);
+        } else {
+          select_returns({}, receiver, params_.seed, out.frame, k, returns, noise);
+        }
+      } else {
+        select_returns(met.gather(gathered), receiver, params_.seed, out.frame, k, returns, noise);
+      }
+      return;
+    }
     if (!weather_.empty()) {
       select_returns(weathered_candidates(weather_, out.rays[index], met, receiver, weathered),
                      receiver, params_.seed, out.frame, k, returns);

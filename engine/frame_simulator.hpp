@@ -84,6 +84,7 @@ class FrameSimulator {
 
   FrameSimulatorParams params_;
   FrameRayBuilder ray_builder_;
+  ReceiverNoise noise_;  // SENSOR-SPEC §11; off: the deterministic receiver
   FrameTracer tracer_;
   WeatherMedia weather_;  // the scene's fog volumes (SENSOR-SPEC §10); empty in clear air
   std::size_t named_objects_ = 0;  // the scene's named_object_count

@@ -33,9 +33,15 @@ void set_ray(RTCRay& ray, const PulseRay& pulse, unsigned id, float tfar) {
   ray.flags = 0;
 }
 
+// The sunlight a solid hit scatters into the receiver (SENSOR-SPEC §11): 0 without sunlight.
+double solid_background(const ReceiverNoise& noise, const Eigen::Vector3d& normal,
+                        const PulseRay& ray, double reflectivity) {
+  return noise.sunlit() ? noise.solid_background(normal, ray.dir_enu, reflectivity) : 0.0;
+}
+
 // The nearest solid hit Embree reported, turned into the pulse's solid candidate in double.
-void record_solid(const EmbreeScene& scene, const PulseRay& ray, const RTCHit& solid,
-                  const CylinderRecord& cylinder, PulseCandidates& out) {
+void record_solid(const EmbreeScene& scene, const ReceiverNoise& noise, const PulseRay& ray,
+                  const RTCHit& solid, const CylinderRecord& cylinder, PulseCandidates& out) {
   const unsigned geom_id = solid.geomID, prim_id = solid.primID;
   if (geom_id == kNoHit) return;
   const Scene& objects = scene.scene();
@@ -44,19 +50,23 @@ void record_solid(const EmbreeScene& scene, const PulseRay& ray, const RTCHit& s
     const MeshObject& mesh = objects.meshes[geom_id];
     const TriangleHit hit = exact_mesh_hit(mesh.mesh, prim_id, ray.origin_enu_m, ray.dir_enu);
     out.set_solid(mesh_candidate(ray, hit.t, hit.normal, mesh, mesh_object_index(objects, geom_id),
-                                 receiver));
+                                 receiver),
+                  solid_background(noise, hit.normal, ray, mesh.reflectivity));
     return;
   }
   if (geom_id == scene.cylinders_geom_id()) {
     if (cylinder.prim_id != prim_id) throw Error("engine: cylinder hit record out of step");
-    out.set_solid(cylinder_candidate(ray, objects.cylinders[prim_id], cylinder.hit,
-                                     cylinder_object_index(objects, prim_id), receiver));
+    const Cylinder& hit_cylinder = objects.cylinders[prim_id];
+    out.set_solid(cylinder_candidate(ray, hit_cylinder, cylinder.hit,
+                                     cylinder_object_index(objects, prim_id), receiver),
+                  solid_background(noise, cylinder.hit.normal, ray, hit_cylinder.reflectivity));
     return;
   }
   if (scene.is_terrain(geom_id)) {
     const TriangleHit hit = scene.terrain_hit(solid, ray);
     out.set_solid(ground_candidate(ray, hit.t, hit.normal, objects.terrain.reflectivity,
-                                   ground_object_index(objects), receiver));
+                                   ground_object_index(objects), receiver),
+                  solid_background(noise, hit.normal, ray, objects.terrain.reflectivity));
   }
 }
 
@@ -174,7 +184,8 @@ void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const st
     for (unsigned i = 0; i < n; ++i) {
       const RTCRayHit& rayhit = rayhits[i];
       const unsigned id = rayhit.ray.id;
-      record_solid(*scene_, rays[id], rayhit.hit, cylinder_hits[id - block], candidates[id]);
+      record_solid(*scene_, noise_, rays[id], rayhit.hit, cylinder_hits[id - block],
+                   candidates[id]);
     }
 
     // Pass 2: the wires in front of it. The filter offers only segments nearer than the solid

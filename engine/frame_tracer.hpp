@@ -27,7 +27,10 @@ class FrameTracer {
  public:
   static constexpr unsigned kChunk = 256;  // rays per task and per stream call
 
-  FrameTracer(const EmbreeScene& scene, TraceApi api) : scene_(&scene), api_(api) {}
+  // `noise`: the receiver's statistics, whose sunlight background each solid hit records
+  // (SENSOR-SPEC §11); the default has none.
+  FrameTracer(const EmbreeScene& scene, TraceApi api, const ReceiverNoise& noise = {})
+      : scene_(&scene), api_(api), noise_(noise) {}
 
   // Traces rays[i] for every i with active[i] != 0 and fills candidates[i] (cleared first; an
   // inactive pulse — the reference fiber — gets none). Spans must have equal sizes. Runs the
@@ -44,6 +47,7 @@ class FrameTracer {
  private:
   const EmbreeScene* scene_;
   TraceApi api_;
+  ReceiverNoise noise_;
 };
 
 }  // namespace owsim

@@ -34,6 +34,9 @@ enum class RandomPurpose : std::uint32_t {
   irs_bias,               // §5 IRS per-flight bias
   forest_layout,          // forest generator, per tree
   sweep_draw,             // a sweep member's varied value (io/sweep/sweep_file.hpp)
+  echo_detection,         // §11 whether a candidate echo registers; pulse | object << 32
+  false_trigger,          // §11 a pulse's false triggers; pulse | draw index << 32
+  false_trigger_group,    // §11 pulses 128j..128j+127's smallest first exponential; key pulse j
 };
 
 using PhiloxBlock = std::array<std::uint32_t, 4>;

@@ -21,19 +21,20 @@ namespace owsim {
 
 // What a return hit, as the detector classes it (SENSOR-SPEC §6, ch. 1). The codes are points.csv's
 // class codes and the C API's OWSIM_CLASS_*: new classes are added at the end.
-// fog: the echo of a fog or cloud volume (SENSOR-SPEC §10).
-enum class SurfaceClass : std::uint8_t { wire, pole, tree, ground, building, fog };
+// fog: the echo of a fog or cloud volume (SENSOR-SPEC §10); noise: a false return, the receiver's
+// noise crossing the threshold with no echo (SENSOR-SPEC §11), no object.
+enum class SurfaceClass : std::uint8_t { wire, pole, tree, ground, building, fog, noise };
 
-inline constexpr std::size_t kSurfaceClassCount = 6;
+inline constexpr std::size_t kSurfaceClassCount = 7;
 inline constexpr std::array<SurfaceClass, kSurfaceClassCount> kSurfaceClasses = {
-    SurfaceClass::wire,   SurfaceClass::pole,     SurfaceClass::tree,
-    SurfaceClass::ground, SurfaceClass::building, SurfaceClass::fog};
+    SurfaceClass::wire,     SurfaceClass::pole, SurfaceClass::tree, SurfaceClass::ground,
+    SurfaceClass::building, SurfaceClass::fog,  SurfaceClass::noise};
 
 // The code that stands for "class unknown" wherever a class is a byte (a decoded return, Frame
 // returns, the PLY class, the report page).
 inline constexpr std::uint8_t kUnknownSurface = 255;
 
-// "wire", "pole", "tree", "ground", "building", "fog" (the `class` column of INTERFACE.md)
+// "wire", "pole", "tree", "ground", "building", "fog", "noise" (the `class` column of INTERFACE.md)
 [[nodiscard]] constexpr std::string_view to_string(SurfaceClass surface) {
   switch (surface) {
     case SurfaceClass::wire:
@@ -48,6 +49,8 @@ inline constexpr std::uint8_t kUnknownSurface = 255;
       return "building";
     case SurfaceClass::fog:
       return "fog";
+    case SurfaceClass::noise:
+      return "noise";
   }
   return "ground";
 }
@@ -101,6 +104,9 @@ struct Scene {
 [[nodiscard]] inline std::size_t named_object_count(const Scene& scene) {
   return scene.conductors.size() + scene.cylinders.size() + scene.meshes.size();
 }
+
+// The object index of a false return (class noise, SENSOR-SPEC §11): no object, an empty id.
+inline constexpr std::uint32_t kNoObject = 0xFFFFFFFFu;
 
 // The ground's object id (points.csv's object column); no scene object may take it.
 inline constexpr std::string_view kTerrainId = "terrain";

@@ -76,11 +76,15 @@ void check_options(const SimulationOptions& options) {
   }
 }
 
-// The scenario with the options' seed and noise overrides.
+// The scenario with the options' seed and noise overrides (--no-noise: range noise and the
+// receiver's noise off).
 Scenario with_overrides(Scenario scenario, const SimulationOptions& options) {
   check_options(options);
   if (options.seed) scenario.seed = *options.seed;
-  if (options.no_noise) scenario.receiver.range_noise_sigma_m = 0.0;
+  if (options.no_noise) {
+    scenario.receiver.range_noise_sigma_m = 0.0;
+    scenario.receiver.noise.on = false;
+  }
   return scenario;
 }
 

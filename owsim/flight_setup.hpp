@@ -25,7 +25,7 @@ namespace owsim {
 // --frames, --duration and --threads.
 struct SimulationOptions {
   std::optional<std::uint64_t> seed;   // replaces the scenario's seed
-  bool no_noise = false;               // range noise off (σ = 0)
+  bool no_noise = false;               // range noise (σ = 0) and receiver noise off
   std::optional<std::int64_t> frames;  // frames 0..frames−1; default: the scenario's duration_s,
   std::optional<double> duration_s;    // else as many as its trajectory holds (not both)
   int threads = 0;  // at most this many threads work for the Simulation at once; 0 = every core

@@ -13,17 +13,19 @@ declare -A part
 part[core]="build-essential cmake ninja-build pkg-config
   libembree-dev libtbb-dev libgeographiclib-dev libeigen3-dev
   libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libfmt-dev
-  libboost-dev zlib1g-dev libcpp-httplib-dev"
+  libboost-dev zlib1g-dev libcpp-httplib-dev libnova-dev"
 # Boost.Math (header-only): Clopper–Pearson intervals of owsim pd/score; zlib: the report page's
-# data; cpp-httplib: owsim studio's local server.
+# data; cpp-httplib: owsim studio's local server; libnova: the sun's position for a scenario's
+# `sun: {time_utc}`.
 part[png]="libopenimageio-dev"                                # quicklook/ (libowsim_png.so)
 part[gdal]="libgdal-dev"                                      # DEM terrain, GIS lines (libowsim_gdal.so)
 part[mesh]="libassimp-dev libtinyobjloader-dev"               # model files (libowsim_mesh.so)
 part[mpi]="libopenmpi-dev openmpi-bin"                        # mpirun … owsim run/sweep (libowsim_mpi.so)
 part[python]="pybind11-dev python3-dev python3-numpy"         # the Python module (python/)
 part[tests]="libgtest-dev libgmock-dev libbenchmark-dev
-  python3-numpy python3-scipy python3-pyproj python3-gdal
-  chromium strace"    # oracles, the report page's and the studio's browser tests, the strace test
+  python3-numpy python3-scipy python3-pyproj python3-gdal python3-astral
+  chromium strace"    # oracles (astral: the sun's position), the report page's and the studio's
+                      # browser tests, the strace test
 part[fuzz]="clang libclang-rt-14-dev llvm"                    # scripts/fuzz.sh, symbolized reports
 part[package]="help2man dpkg-dev file"                        # scripts/package.sh: man pages, .deb
 part[all]="${part[core]} ${part[png]} ${part[gdal]} ${part[mesh]} ${part[mpi]} ${part[python]}

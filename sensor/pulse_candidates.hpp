@@ -70,13 +70,16 @@ class PulseCandidates {
   }
   // A wire segment's candidate: kept if it is its conductor's strongest so far.
   void offer_wire(const Candidate& candidate);
-  // The nearest solid surface the central ray hit (the caller guarantees it is the nearest).
-  void set_solid(const Candidate& candidate) {
+  // The nearest solid surface the central ray hit (the caller guarantees it is the nearest), and
+  // the sunlight background b it scatters into the receiver (SENSOR-SPEC §11; 0 at night).
+  void set_solid(const Candidate& candidate, double background = 0.0) {
     solid_ = candidate;
+    solid_background_ = background;
     has_solid_ = true;
   }
   [[nodiscard]] bool has_solid() const { return has_solid_; }
   [[nodiscard]] const Candidate& solid() const { return solid_; }
+  [[nodiscard]] double solid_background() const { return solid_background_; }
   [[nodiscard]] std::span<const Candidate> wires() const {
     return {wires_.data(), static_cast<std::size_t>(wire_count_)};
   }
@@ -88,6 +91,7 @@ class PulseCandidates {
   std::array<Candidate, kMaxWires> wires_{};
   int wire_count_ = 0;
   Candidate solid_{};
+  double solid_background_ = 0.0;
   bool has_solid_ = false;
 };
 

@@ -1,8 +1,10 @@
 #include "sensor/receiver.hpp"
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -10,6 +12,7 @@
 #include "geometry/error.hpp"
 #include "geometry/keyed_random.hpp"
 #include "geometry/number_text.hpp"
+#include "geometry/scene.hpp"
 #include "sensor/footprint.hpp"
 #include "sensor/return_energy.hpp"
 
@@ -73,6 +76,23 @@ void validate(const ReceiverParams& p) {
     throw input_error("sensor.timeout_counts", "must be 1..4095 (12-bit counter), got " +
                                                    std::to_string(p.counter.timeout_counts));
   }
+  require_non_negative("sensor.receiver.noise_at_1km", p.noise.noise_at_1km);
+  require_positive("sensor.receiver.pulse_width_ns", p.noise.pulse_width_ns);
+  require_non_negative("sensor.receiver.sun_noise", p.noise.sun_noise);
+  require_non_negative("sensor.receiver.sky_noise", p.noise.sky_noise);
+  if (p.sun.given && !(std::abs(p.sun.elevation_deg) <= 90.0)) {
+    throw input_error("sun.elevation_deg",
+                      "must be in [-90, 90] deg, got " + number_text(p.sun.elevation_deg));
+  }
+  if (p.sun.given && !std::isfinite(p.sun.azimuth_deg)) {
+    throw input_error("sun.azimuth_deg", "must be a finite angle clockwise from north, got " +
+                                             number_text(p.sun.azimuth_deg));
+  }
+}
+
+ReceiverNoise receiver_noise(const ReceiverParams& p) {
+  return ReceiverNoise(p.noise, p.sun, p.threshold, timeout_range_m(p.counter),
+                       p.counter.speed_of_light_mps / p.counter.refractive_index_air);
 }
 
 double range_noise_sigma_m(const ReceiverParams& p) {
@@ -119,8 +139,89 @@ void record_returns(const Candidate* const (&chosen)[2], const ReceiverParams& p
 
 }  // namespace
 
+namespace {
+
+// SENSOR-SPEC §7 pinned return selection over candidates that all registered (sorted in place).
+void choose_returns(std::span<Candidate> detected, const ReceiverParams& p,
+                    const Candidate* (&chosen)[2]) {
+  if (p.rule == ReturnRule::strongest) {
+    chosen[0] = &*std::min_element(detected.begin(), detected.end(), stronger);
+    return;
+  }
+  std::sort(detected.begin(), detected.end(), nearer);
+  chosen[0] = &detected.front();
+  for (const Candidate& c : detected.subspan(1)) {
+    if (c.range_m >= detected.front().range_m + p.min_return_separation_m) {
+      chosen[1] = &c;
+      return;
+    }
+  }
+}
+
+// A false trigger at `range_m`: it crossed the threshold there, no object, no incidence
+// (SENSOR-SPEC §11 returns).
+Candidate false_return(double range_m, const ReceiverParams& p) {
+  return Candidate{range_m, p.threshold, std::numeric_limits<double>::quiet_NaN(), kNoObject,
+                   static_cast<std::uint8_t>(SurfaceClass::noise)};
+}
+
+// SENSOR-SPEC §11 returns: the echoes that register through the noise (moved to the front of
+// `candidates`) and the pulse's false triggers, in range order, then §7's selection. Only the
+// triggers that can become a return are drawn: the nearest, and (first_second) the nearest one a
+// separation beyond the first return — the Poisson process beyond a point is independent of what
+// lies before it. Most pulses draw no trigger and select among their echoes in place.
+void select_noisy_returns(std::span<Candidate> candidates, const ReceiverParams& p,
+                          std::uint64_t seed, std::int64_t frame, int pulse,
+                          const PulseNoise& noise, PulseReturns& out) {
+  set_no_returns(p, out);
+  const ReceiverNoise& model = *noise.model;
+  const std::span<Candidate> registered(
+      candidates.begin(),
+      std::partition(candidates.begin(), candidates.end(), [&](const Candidate& c) {
+        return model.echo_registers(c.energy_rel, c.range_m, noise.background, seed, frame, pulse,
+                                    c.object_index);
+      }));
+  std::uint32_t draw = 0;
+  const double trigger =
+      model.next_false_trigger_m(0.0, noise.background, noise.busy, seed, frame, pulse, draw);
+  const Candidate* chosen[2] = {nullptr, nullptr};
+  if (trigger < 0.0) {
+    if (registered.empty()) return;
+    if (registered.size() == 1) {
+      chosen[0] = &registered.front();
+    } else {
+      choose_returns(registered, p, chosen);
+    }
+    record_returns(chosen, p, seed, frame, pulse, out);
+    return;
+  }
+  std::array<Candidate, kMaxNoisyCandidates + 2> pool;
+  const std::size_t echoes = std::min(registered.size(), kMaxNoisyCandidates);
+  std::copy_n(registered.begin(), echoes, pool.begin());
+  std::size_t n = echoes;
+  double nearest = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < echoes; ++i) nearest = std::min(nearest, pool[i].range_m);
+  pool[n++] = false_return(trigger, p);
+  const double second_from = std::min(nearest, trigger) + p.min_return_separation_m;
+  if (p.rule == ReturnRule::first_second && trigger < second_from) {
+    const double second = model.next_false_trigger_m(second_from, noise.background, noise.busy,
+                                                     seed, frame, pulse, draw);
+    if (second >= 0.0) pool[n++] = false_return(second, p);
+  }
+  choose_returns(std::span<Candidate>(pool.data(), n), p, chosen);
+  record_returns(chosen, p, seed, frame, pulse, out);
+}
+
+bool noisy(const PulseNoise& noise) { return noise.model != nullptr && noise.model->on(); }
+
+}  // namespace
+
 void select_returns(std::span<Candidate> candidates, const ReceiverParams& p, std::uint64_t seed,
-                    std::int64_t frame, int pulse, PulseReturns& out) {
+                    std::int64_t frame, int pulse, PulseReturns& out, const PulseNoise& noise) {
+  if (noisy(noise)) {
+    select_noisy_returns(candidates, p, seed, frame, pulse, noise, out);
+    return;
+  }
   if (candidates.size() == 1) {
     select_single_return(candidates.front(), p, seed, frame, pulse, out);
     return;
@@ -151,23 +252,18 @@ void select_returns(std::span<Candidate> candidates, const ReceiverParams& p, st
                                          [&](const Candidate& c) { return registers(c, p); }));
   if (detected.empty()) return;
   const Candidate* chosen[2] = {nullptr, nullptr};
-  if (p.rule == ReturnRule::strongest) {
-    chosen[0] = &*std::min_element(detected.begin(), detected.end(), stronger);
-  } else {
-    std::sort(detected.begin(), detected.end(), nearer);
-    chosen[0] = &detected.front();
-    for (const Candidate& c : detected.subspan(1)) {
-      if (c.range_m >= detected.front().range_m + p.min_return_separation_m) {
-        chosen[1] = &c;
-        break;
-      }
-    }
-  }
+  choose_returns(detected, p, chosen);
   record_returns(chosen, p, seed, frame, pulse, out);
 }
 
 void select_single_return(const Candidate& candidate, const ReceiverParams& p, std::uint64_t seed,
-                          std::int64_t frame, int pulse, PulseReturns& out) {
+                          std::int64_t frame, int pulse, PulseReturns& out,
+                          const PulseNoise& noise) {
+  if (noisy(noise)) {
+    Candidate copy = candidate;
+    select_noisy_returns(std::span<Candidate>(&copy, 1), p, seed, frame, pulse, noise, out);
+    return;
+  }
   set_no_returns(p, out);
   // One surface: nothing to sort; either rule keeps it if it registers.
   if (!registers(candidate, p)) return;

@@ -24,6 +24,7 @@
 #include "sensor/atmosphere.hpp"
 #include "sensor/beam.hpp"
 #include "sensor/range_counter.hpp"
+#include "sensor/receiver_noise.hpp"
 
 namespace owsim {
 
@@ -35,18 +36,24 @@ enum class ReturnRule {
 
 struct ReceiverParams {
   BeamParams beam;           // §7
-  double threshold = 0.005;  // §7 minimum ξ_rx/ξ_tx (key sensor.threshold)
+  // §7 minimum ξ_rx/ξ_tx (key sensor.threshold), calibrated with §11's receiver noise
+  // (docs/model.md "Receiver statistics"; owsim 0.1.0's deterministic receiver used 0.005)
+  double threshold = 0.0029;
   double range_noise_sigma_m =
       0.4241;  // §1 σ; 0 disables, negative → Δ/√2 (key sensor.range_noise_sigma_m)
   ReturnRule rule = ReturnRule::first_second;  // key sensor.returns
   double min_return_separation_m = 0.75;       // §7 c·5 ns/2 (key sensor.min_return_separation_m)
   Atmosphere atmosphere;                       // §7 T_atm
   RangeCounterParams counter;                  // §1
+  ReceiverNoiseParams noise;                   // §11 (keys sensor.receiver.*)
+  SunPosition sun;                             // §11 sunlight (the scenario's `sun`)
 };
 
 // Throws owsim::Error naming the scenario key for: a divergence outside [0, 1000) mrad, a negative
 // exit radius, a threshold outside [0, 1], a non-finite noise σ, a negative separation, a bad
-// atmosphere (validate(Atmosphere)), non-positive counter constants or a timeout outside 1..4095.
+// atmosphere (validate(Atmosphere)), non-positive counter constants or a timeout outside 1..4095,
+// negative or non-finite receiver-noise keys (SENSOR-SPEC §11), a pulse width ≤ 0, a sun
+// elevation outside [−90, 90] or a non-finite azimuth.
 // Every field is checked, so the per-pulse functions need not be.
 void validate(const ReceiverParams& p);
 
@@ -82,11 +89,29 @@ struct PulseReturns {
   Return returns[2];
 };
 
+// The receiver's statistics for these parameters: threshold, noise keys, sun, and the gate from 0
+// to the counter's timeout range with light at c / n_air  (SENSOR-SPEC §11)
+[[nodiscard]] ReceiverNoise receiver_noise(const ReceiverParams& p);
+
+// What the receiver's statistics need of one pulse (SENSOR-SPEC §11). The default — no model —
+// is §7's deterministic receiver.
+struct PulseNoise {
+  const ReceiverNoise* model = nullptr;  // null or off: deterministic, no false trigger
+  double background = 0.0;               // b of the pulse (ReceiverNoise::solid/sky_background)
+  std::span<const BusyInterval> busy;    // fog busy intervals on the pulse's path, nearest first
+};
+
+// The most candidates select_returns takes with a noise model (every wire, the solid, the fog's).
+inline constexpr std::size_t kMaxNoisyCandidates = 22;
+
 // Threshold, selection, noise and counters for one pulse, written into `out`  (SENSOR-SPEC §1,
 // §7 pinned return selection). Reorders `candidates` in place; allocation-free. Only
-// out.returns[0 .. count) are written: the entries beyond are left as they were.
+// out.returns[0 .. count) are written: the entries beyond are left as they were. With a noise
+// model that is on (SENSOR-SPEC §11) each candidate registers with probability Φ((e − T)/σ_n)
+// and the pulse's false triggers join the echoes before §7's selection: a false return is
+// class noise, object kNoObject, energy_rel T, incidence NaN.
 void select_returns(std::span<Candidate> candidates, const ReceiverParams& p, std::uint64_t seed,
-                    std::int64_t frame, int pulse, PulseReturns& out);
+                    std::int64_t frame, int pulse, PulseReturns& out, const PulseNoise& noise = {});
 // No return: count 0 and both counters at the timeout (the returns array is left as it was):
 // select_returns of no candidate.
 inline void set_no_returns(const ReceiverParams& p, PulseReturns& out) {
@@ -96,7 +121,8 @@ inline void set_no_returns(const ReceiverParams& p, PulseReturns& out) {
 // select_returns of the one candidate a pulse met (most pulses: one surface, no wire), without
 // copying it into a span first.
 void select_single_return(const Candidate& candidate, const ReceiverParams& p, std::uint64_t seed,
-                          std::int64_t frame, int pulse, PulseReturns& out);
+                          std::int64_t frame, int pulse, PulseReturns& out,
+                          const PulseNoise& noise = {});
 // The same, returned.
 [[nodiscard]] inline PulseReturns select_returns(std::span<Candidate> candidates,
                                                  const ReceiverParams& p, std::uint64_t seed,

@@ -13,6 +13,13 @@ namespace {
 
 constexpr double kKoschmieder = 3.912;  // ln 50: 2 % contrast
 
+// How far past a medium's exit a solid still lies on its boundary. The exit (a slab test) and the
+// solid's range (its own intersection, e.g. the ground's triangle) are the same point computed two
+// ways when the medium stands on the solid: they differ by rounding, ~1e-13 m either way
+// (fog_bank: the ground 3e-14 to 1.1e-13 m past the box's floor). A micrometre is far above that
+// and far below anything a 0.75 m pulse resolves.
+constexpr double kSolidOnBoundaryM = 1e-6;
+
 }  // namespace
 
 double fog_extinction_per_m(double visibility_m) { return kKoschmieder / visibility_m; }
@@ -147,7 +154,9 @@ void MediumPath::find_runs(const WeatherMedia& media, const ReceiverParams& rece
       // The medium's own boundary ends the busy interval; the solid that ends the path does not:
       // met while the echo is still above the threshold, it merges into the volume's return (no
       // new leading edge) and is hidden with what lies inside the interval (SENSOR-SPEC §10).
-      const bool ends_at_solid = s.end_m >= end_m;
+      // A solid on the medium's boundary (a fog box or layer standing on the ground) is met
+      // inside it, whichever of its two ranges rounding puts first.
+      const bool ends_at_solid = s.end_m >= end_m - kSolidOnBoundaryM;
       if (current != nullptr) {
         current->busy_end_m = ends_at_solid ? above_until : std::min(above_until, s.end_m);
       }
@@ -161,8 +170,14 @@ void MediumPath::find_runs(const WeatherMedia& media, const ReceiverParams& rece
 
 std::size_t apply_weather(const WeatherMedia& media, const PulseRay& ray, double end_m,
                           const ReceiverParams& receiver, std::span<Candidate> buffer,
-                          std::size_t count) {
+                          std::size_t count, PathBusyIntervals* busy) {
   const MediumPath path(media, ray, end_m, receiver);
+  if (busy != nullptr) {
+    busy->count = path.runs().size();
+    for (std::size_t r = 0; r < busy->count; ++r) {
+      busy->intervals[r] = BusyInterval{path.runs()[r].range_m, path.runs()[r].busy_end_m};
+    }
+  }
   if (path.clear()) return count;
   std::size_t kept = 0;
   for (std::size_t i = 0; i < count; ++i) {
@@ -184,7 +199,7 @@ std::size_t apply_weather(const WeatherMedia& media, const PulseRay& ray, double
 std::span<Candidate> weathered_candidates(const WeatherMedia& media, const PulseRay& ray,
                                           const PulseCandidates& met,
                                           const ReceiverParams& receiver,
-                                          WeatherCandidates& buffer) {
+                                          WeatherCandidates& buffer, PathBusyIntervals* busy) {
   std::size_t hard = 0;
   if (met.wires().empty()) {
     if (met.has_solid()) buffer[hard++] = met.solid();  // most pulses: no gathering
@@ -192,7 +207,7 @@ std::span<Candidate> weathered_candidates(const WeatherMedia& media, const Pulse
     hard = met.gather(buffer).size();
   }
   const double end_m = met.has_solid() ? met.solid().range_m : timeout_range_m(receiver.counter);
-  return {buffer.data(), apply_weather(media, ray, end_m, receiver, buffer, hard)};
+  return {buffer.data(), apply_weather(media, ray, end_m, receiver, buffer, hard, busy)};
 }
 
 }  // namespace owsim

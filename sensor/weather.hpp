@@ -102,12 +102,21 @@ class MediumPath {
   std::size_t run_count_ = 0;
 };
 
+// The busy intervals of one pulse's path (SENSOR-SPEC §10, §11: they swallow false triggers too).
+struct PathBusyIntervals {
+  std::array<BusyInterval, kMaxVolumeRuns> intervals;
+  std::size_t count = 0;
+  [[nodiscard]] std::span<const BusyInterval> span() const { return {intervals.data(), count}; }
+};
+
 // SENSOR-SPEC §10 for one pulse: the `count` hard candidates at the front of `buffer` are
 // attenuated by the path through the media and dropped inside a busy interval, and the volume
 // candidates are appended; returns the new count (buffer.size() must leave kMaxVolumeRuns spare).
+// `busy`, when given, receives the path's busy intervals (decided on the noiseless echo).
 [[nodiscard]] std::size_t apply_weather(const WeatherMedia& media, const PulseRay& ray,
                                         double end_m, const ReceiverParams& receiver,
-                                        std::span<Candidate> buffer, std::size_t count);
+                                        std::span<Candidate> buffer, std::size_t count,
+                                        PathBusyIntervals* busy = nullptr);
 
 // Room for what one pulse hands the receiver in weather: its wires, its solid hit, the volumes'.
 using WeatherCandidates = std::array<Candidate, PulseCandidates::kMaxWires + 1 + kMaxVolumeRuns>;
@@ -117,6 +126,7 @@ using WeatherCandidates = std::array<Candidate, PulseCandidates::kMaxWires + 1 +
                                                         const PulseRay& ray,
                                                         const PulseCandidates& met,
                                                         const ReceiverParams& receiver,
-                                                        WeatherCandidates& buffer);
+                                                        WeatherCandidates& buffer,
+                                                        PathBusyIntervals* busy = nullptr);
 
 }  // namespace owsim

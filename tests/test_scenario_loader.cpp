@@ -15,6 +15,7 @@
 #include "geometry/error.hpp"
 #include "io/scenario/scenario_loader.hpp"
 #include "io/scenario/scene_builder.hpp"
+#include "io/scenario/solar_position.hpp"
 #include "minimal_scenario.hpp"
 #include "python_oracle.hpp"
 #include "sensor/range_counter.hpp"
@@ -250,7 +251,7 @@ TEST(ScenarioLoader, MinimalScenarioHasTheSpecDefaults) {
   EXPECT_EQ(s.name, "m");
   EXPECT_EQ(s.seed, 0u);
   EXPECT_EQ(s.scan.model, SensorModel::milows);
-  EXPECT_DOUBLE_EQ(s.receiver.threshold, 0.005);
+  EXPECT_DOUBLE_EQ(s.receiver.threshold, 0.0029);  // calibrated with the receiver noise (0.1.0: 0.005)
   EXPECT_DOUBLE_EQ(s.receiver.range_noise_sigma_m, 0.4241);
   EXPECT_DOUBLE_EQ(s.receiver.beam.divergence_mrad, 1.0);
   EXPECT_DOUBLE_EQ(s.receiver.beam.exit_radius_m, 0.0);
@@ -384,6 +385,79 @@ atmosphere: {visibility_km: 5, wavelength_um: 1.55}
   ASSERT_TRUE(s.receiver.atmosphere.visibility_km);
   EXPECT_DOUBLE_EQ(*s.receiver.atmosphere.visibility_km, 5.0);
   EXPECT_DOUBLE_EQ(s.receiver.atmosphere.wavelength_um, 1.55);
+}
+
+// ---- the receiver's statistics and the sun (SENSOR-SPEC §11) ----
+
+TEST(ScenarioLoader, WithoutReceiverKeysNoiseIsOnWithItsDefaultsAndItIsNight) {
+  const Scenario s = load_scenario_text(kMinimal, kPath);
+  const ReceiverNoiseParams defaults;
+  EXPECT_TRUE(s.receiver.noise.on);
+  EXPECT_EQ(s.receiver.noise.noise_at_1km, defaults.noise_at_1km);
+  EXPECT_EQ(s.receiver.noise.pulse_width_ns, defaults.pulse_width_ns);
+  EXPECT_EQ(s.receiver.noise.sun_noise, defaults.sun_noise);
+  EXPECT_EQ(s.receiver.noise.sky_noise, defaults.sky_noise);
+  EXPECT_FALSE(s.receiver.sun.given);
+}
+
+TEST(ScenarioLoader, ReceiverStatisticsKeysLandInTheirFields) {
+  const Scenario s = load_scenario_text(std::string(kMinimal) + R"(sensor:
+  receiver:
+    noise: off
+    noise_at_1km: 0.002
+    pulse_width_ns: 3.5
+    sun_noise: 0.7
+    sky_noise: 0.25
+)",
+                                        kPath);
+  EXPECT_FALSE(s.receiver.noise.on);
+  EXPECT_EQ(s.receiver.noise.noise_at_1km, 0.002);
+  EXPECT_EQ(s.receiver.noise.pulse_width_ns, 3.5);
+  EXPECT_EQ(s.receiver.noise.sun_noise, 0.7);
+  EXPECT_EQ(s.receiver.noise.sky_noise, 0.25);
+  // The switch as YAML 1.1 reads it (a boolean) or as text; either spelling, any case.
+  for (const auto& [text, on] :
+       {std::pair{"on", true}, std::pair{"off", false}, std::pair{"true", true},
+        std::pair{"false", false}, std::pair{"On", true}, std::pair{"OFF", false},
+        std::pair{"\"off\"", false}, std::pair{"'on'", true}}) {
+    const Scenario switched = load_scenario_text(
+        std::string(kMinimal) + "sensor: {receiver: {noise: " + text + "}}\n", kPath);
+    EXPECT_EQ(switched.receiver.noise.on, on) << text;
+  }
+}
+
+TEST(ScenarioLoader, TheSunFromItsAnglesOrFromATimeAtTheOrigin) {
+  const Scenario angles = load_scenario_text(
+      std::string(kMinimal) + "sun: {elevation_deg: 30, azimuth_deg: -45}\n", kPath);
+  EXPECT_TRUE(angles.receiver.sun.given);
+  EXPECT_EQ(angles.receiver.sun.elevation_deg, 30.0);
+  EXPECT_EQ(angles.receiver.sun.azimuth_deg, 315.0);  // wrapped into [0, 360)
+  EXPECT_EQ(load_scenario_text(std::string(kMinimal) + "sun: {elevation_deg: -90, azimuth_deg: "
+                                                       "1000}\n",
+                               kPath)
+                .receiver.sun.azimuth_deg,
+            280.0);
+
+  // A time: the sun at the origin (48.6881 N, 10.8447 E); astral puts it at 63.00°, 154.88°
+  // (tests/test_solar_position.cpp compares the two over many times and places).
+  const SunPosition expected =
+      solar_position(parse_utc_time("2026-06-21T10:30:00Z"), 48.6881, 10.8447);
+  for (const char* written : {"\"2026-06-21T10:30:00Z\"", "2026-06-21T10:30:00Z"}) {
+    const Scenario timed =
+        load_scenario_text(std::string(kMinimal) + "sun: {time_utc: " + written + "}\n", kPath);
+    EXPECT_TRUE(timed.receiver.sun.given);
+    EXPECT_EQ(timed.receiver.sun.elevation_deg, expected.elevation_deg) << written;
+    EXPECT_EQ(timed.receiver.sun.azimuth_deg, expected.azimuth_deg) << written;
+  }
+  EXPECT_NEAR(expected.elevation_deg, 63.00, 0.1);
+  EXPECT_NEAR(expected.azimuth_deg, 154.88, 0.1);
+  // The same instant seen from the other side of the Earth: the origin decides.
+  std::string sydney = kMinimal;
+  sydney.replace(sydney.find("lat: 48.6881, lon: 10.8447"), 26, "lat: -33.8688, lon: 151.2093");
+  const Scenario south =
+      load_scenario_text(sydney + "sun: {time_utc: \"2026-06-21T22:30:00Z\"}\n", kPath);
+  EXPECT_NEAR(south.receiver.sun.elevation_deg, 14.50, 0.1);  // astral: 14.499°, 48.141°
+  EXPECT_NEAR(south.receiver.sun.azimuth_deg, 48.14, 0.1);
 }
 
 TEST(ScenarioLoader, TrajectoryFileAndItsOptions) {
@@ -689,6 +763,46 @@ trajectory:
                "must be in [0, 1000000], got -1");
   expect_error(m + "scene:\n  terrain: {flat_u: 0, reflectivity: 1.5}\n", 8,
                "scene.terrain.reflectivity", "must be in [0, 1], got 1.5");
+}
+
+TEST(ScenarioLoaderErrors, ReceiverStatisticsAndSun) {
+  const std::string m = kMinimal;
+  const std::string r = m + "sensor:\n  receiver: ";
+  expect_error(r + "{noise_at_1km: -0.001}\n", 8, "sensor.receiver.noise_at_1km",
+               "must be in [0, 1], got -0.001");
+  expect_error(r + "{noise_at_1km: .nan}\n", 8, "sensor.receiver.noise_at_1km",
+               "expected a number");
+  expect_error(r + "{sun_noise: -1}\n", 8, "sensor.receiver.sun_noise",
+               "must be in [0, 1000], got -1");
+  expect_error(r + "{sky_noise: -0.5}\n", 8, "sensor.receiver.sky_noise",
+               "must be in [0, 1000], got -0.5");
+  expect_error(r + "{sky_noise: inf}\n", 8, "sensor.receiver.sky_noise",
+               "expected a finite number");
+  expect_error(r + "{pulse_width_ns: 0}\n", 8, "sensor.receiver.pulse_width_ns",
+               "must be in [0.1, 1000] ns, got 0");
+  expect_error(r + "{pulse_width_ns: -5}\n", 8, "sensor.receiver.pulse_width_ns",
+               "must be in [0.1, 1000] ns, got -5");
+  expect_error(r + "{noise: maybe}\n", 8, "sensor.receiver.noise",
+               "expected on or off, got 'maybe'");
+  expect_error(r + "{nois: off}\n", 8, "sensor.receiver.nois",
+               "unknown key 'nois' in sensor.receiver (did you mean 'noise'?)");
+
+  expect_error(m + "sun: {elevation_deg: 200, azimuth_deg: 0}\n", 7, "sun.elevation_deg",
+               "must be in [-90, 90] deg, got 200");
+  expect_error(m + "sun: {elevation_deg: 10, azimuth_deg: -inf}\n", 7, "sun.azimuth_deg",
+               "expected a finite number");
+  expect_error(m + "sun: {elevation_deg: 10}\n", 7, "sun.azimuth_deg", "required, but missing");
+  expect_error(m + "sun: {elevation: 10, azimuth_deg: 0}\n", 7, "sun.elevation",
+               "unknown key 'elevation' in sun (did you mean 'elevation_deg'?)");
+  expect_error(m + "sun: {}\n", 7, "sun", "needs {elevation_deg, azimuth_deg} or {time_utc:");
+  expect_error(m + "sun: {time_utc: tomorrow}\n", 7, "sun.time_utc",
+               "expected an ISO 8601 UTC time like 2026-06-21T10:30:00Z, got 'tomorrow'");
+  expect_error(m + "sun: {time_utc: \"2026-02-30T10:00:00Z\"}\n", 7, "sun.time_utc",
+               "no day 30 in that month: '2026-02-30T10:00:00Z'");
+  expect_error(m + "sun: {time_utc: \"2026-06-21T12:30:00+02:00\"}\n", 7, "sun.time_utc",
+               "must be a UTC time (ending in Z), got the offset +02:00");
+  expect_error(m + "sun:\n  time_utc: \"2026-06-21T10:30:00Z\"\n  elevation_deg: 45\n", 8,
+               "sun.time_utc", "give time_utc or elevation_deg and azimuth_deg, not both");
 }
 
 TEST(ScenarioLoaderErrors, ImpossibleValues) {

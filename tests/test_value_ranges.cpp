@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -16,6 +17,7 @@
 #include "io/scenario/value_ranges.hpp"
 #include "io/trajectory/trajectory_loader.hpp"
 #include "minimal_scenario.hpp"
+#include "sensor/receiver.hpp"
 
 namespace owsim {
 namespace {
@@ -164,10 +166,63 @@ TEST(ValueRanges, AScenarioBuiltInCodeIsHeldToTheSameTable) {
             "weather.fog[0].visibility_m: must be in [1, 100000] m, got 1e-300");
   EXPECT_EQ(error_of_built([](Scenario& s) { s.scene.fog_backscatter_ratio_sr = 1e308; }),
             "weather.backscatter_ratio_sr: must be in [0, 1] sr^-1, got 1e+308");
+  EXPECT_EQ(error_of_built([](Scenario& s) { s.receiver.noise.noise_at_1km = -1.0; }),
+            "sensor.receiver.noise_at_1km: must be in [0, 1], got -1");
+  EXPECT_EQ(error_of_built([](Scenario& s) { s.receiver.noise.pulse_width_ns = 0.0; }),
+            "sensor.receiver.pulse_width_ns: must be in [0.1, 1000] ns, got 0");
+  EXPECT_EQ(error_of_built([](Scenario& s) { s.receiver.noise.sun_noise = -2.0; }),
+            "sensor.receiver.sun_noise: must be in [0, 1000], got -2");
+  EXPECT_EQ(error_of_built([](Scenario& s) { s.receiver.noise.sky_noise = -0.5; }),
+            "sensor.receiver.sky_noise: must be in [0, 1000], got -0.5");
+  EXPECT_EQ(error_of_built([](Scenario& s) {
+              s.receiver.sun = {.given = true, .elevation_deg = 200.0, .azimuth_deg = 0.0};
+            }),
+            "sun.elevation_deg: must be in [-90, 90] deg, got 200");
+  // Night: the angles of a sun not given are not read.
+  EXPECT_EQ(error_of_built([](Scenario& s) { s.receiver.sun.elevation_deg = 200.0; }), "accepted");
   fog.visibility_m = 20.0;
   fog.id = "terrain";
   EXPECT_EQ(error_of_built([&](Scenario& s) { s.scene.fog = {fog}; }),
             "weather.fog[0].id: 'terrain' is the ground's id (points.csv's object column)");
+}
+
+// validate(ReceiverParams) (sensor/receiver.hpp), what the receiver itself relies on, refuses
+// what the table cannot say: a NaN anywhere, an infinite azimuth.
+TEST(ValueRanges, TheReceiverRefusesNonFiniteStatisticsAndSun) {
+  const auto error_of_receiver = [](auto change) -> std::string {
+    ReceiverParams receiver;
+    change(receiver);
+    try {
+      validate(receiver);
+    } catch (const Error& error) {
+      return error.what();
+    }
+    return "accepted";
+  };
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(error_of_receiver([](ReceiverParams&) {}), "accepted");
+  EXPECT_EQ(error_of_receiver([&](ReceiverParams& p) { p.noise.noise_at_1km = nan; }),
+            "sensor.receiver.noise_at_1km: must be a finite number ≥ 0, got nan");
+  EXPECT_EQ(error_of_receiver([&](ReceiverParams& p) { p.noise.pulse_width_ns = -1.0; }),
+            "sensor.receiver.pulse_width_ns: must be a finite number > 0, got -1");
+  EXPECT_EQ(error_of_receiver([&](ReceiverParams& p) { p.noise.sun_noise = inf; }),
+            "sensor.receiver.sun_noise: must be a finite number ≥ 0, got inf");
+  EXPECT_EQ(error_of_receiver([&](ReceiverParams& p) { p.noise.sky_noise = -1e-9; }),
+            "sensor.receiver.sky_noise: must be a finite number ≥ 0, got -1e-09");
+  EXPECT_EQ(error_of_receiver([&](ReceiverParams& p) {
+              p.sun = {true, nan, 0.0};
+            }),
+            "sun.elevation_deg: must be in [-90, 90] deg, got nan");
+  EXPECT_EQ(error_of_receiver([&](ReceiverParams& p) {
+              p.sun = {true, 45.0, inf};
+            }),
+            "sun.azimuth_deg: must be a finite angle clockwise from north, got inf");
+  EXPECT_EQ(error_of_receiver([&](ReceiverParams& p) {
+              p.sun = {true, 45.0, -400.0};
+            }),
+            "accepted");  // any finite azimuth: the direction is its sine and cosine
+  EXPECT_EQ(error_of_receiver([&](ReceiverParams& p) { p.sun = {false, nan, inf}; }), "accepted");
 }
 
 TEST(ValueRanges, TooManyFogVolumesAreRefusedAtTheirLine) {

@@ -205,6 +205,49 @@ TEST(MediumPath, ASolidInsideTheBusyIntervalIsNotANewReturn) {
   EXPECT_EQ(buffer[1].object_index, 7u);
 }
 
+// Issue 44 item 6, fog standing on flat ground: the ground and the fog's floor are one plane, but
+// the ground's range (its triangle, in double) lies 1.1e-13 m past the floor's slab exit. The
+// ground was then taken as behind the medium, the busy interval (0.7643 m with T_atm 0.95) cut at
+// the floor, and the ground 0.756 m behind the fog's entry became a second return. The ray and the
+// ground's range are those of fog_bank's frame 1, pulse 11187 (owsim 0.1.0, `owsim run
+// examples/fog_bank.yaml --no-noise`); the same ray ends in a 0.105 m layer of the same fog.
+TEST(MediumPath, TheGroundUnderAFogIsInsideIt) {
+  const PulseRay ray{{-579.3562533750062, 1.2640649113353857e-15, 60.0},
+                     {0.9898247165000341, 0.03019562903523729, -0.13905126605965723}};
+  const double ground_m = 431.4955318296648;
+  ASSERT_NEAR(ray.origin_enu_m.z() + ground_m * ray.dir_enu.z(), 0.0, 1e-12);
+  FogVolume bank;
+  bank.id = "bank";
+  bank.visibility_m = 20.0;
+  bank.shape = FogShape::box;
+  bank.box = Eigen::AlignedBox3d(Eigen::Vector3d(-153, -400, 0), Eigen::Vector3d(-150, 400, 150));
+  FogVolume layer = bank;
+  layer.shape = FogShape::layer;
+  layer.base_m = 0.0;
+  layer.top_m = 0.105;
+  ReceiverParams receiver;
+  receiver.threshold = 0.005;
+  receiver.atmosphere.transmission = 0.95;
+  for (const FogVolume& fog : {bank, layer}) {
+    SCOPED_TRACE(fog.shape == FogShape::box ? "box" : "layer");
+    const auto through = path_interval(fog, ray.origin_enu_m, ray.dir_enu, ground_m);
+    ASSERT_TRUE(through.has_value());
+    EXPECT_LT(through->exit_m, ground_m);  // the rounding: the floor a hair before the ground
+    EXPECT_GT(through->exit_m, ground_m - 1e-12);
+    const WeatherMedia media({fog}, 0.0154, 7, receiver);
+    EXPECT_NEAR(media.entry_busy_m[0], 0.76432, 1e-5);
+    // Behind the fog's return by more than the return separation, inside the busy interval.
+    ASSERT_GT(ground_m - through->enter_m, receiver.min_return_separation_m);
+    ASSERT_LT(ground_m - through->enter_m, media.entry_busy_m[0]);
+    std::array<Candidate, 8> buffer{};
+    buffer[0] =
+        Candidate{ground_m, 0.00507, 82.0, 0, static_cast<std::uint8_t>(SurfaceClass::ground)};
+    ASSERT_EQ(apply_weather(media, ray, ground_m, receiver, buffer, 1), 1u);
+    EXPECT_EQ(buffer[0].object_index, 7u);  // the fog alone: the ground merged into its return
+    EXPECT_EQ(buffer[0].range_m, through->enter_m);
+  }
+}
+
 const char* kLayerScenario = R"(name: layer
 seed: 9
 origin: {lat: 48.6881, lon: 10.8447, h: 450.0}

@@ -62,7 +62,10 @@ Scenario load_recording_scenario(const std::filesystem::path& scenario_path,
     throw input_error("--trajectory-format", "applies only with --trajectory");
   }
   if (overrides.seed) scenario.seed = *overrides.seed;
-  if (overrides.no_noise) scenario.receiver.range_noise_sigma_m = 0.0;
+  if (overrides.no_noise) {
+    scenario.receiver.range_noise_sigma_m = 0.0;
+    scenario.receiver.noise.on = false;
+  }
   return scenario;
 }
 

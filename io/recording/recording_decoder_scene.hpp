@@ -36,7 +36,7 @@ struct RecordingScenarioOverrides {
   std::optional<std::filesystem::path> trajectory;
   std::optional<std::string> trajectory_format;
   std::optional<std::uint64_t> seed;  // `--seed`
-  bool no_noise = false;              // `--no-noise`: range noise σ = 0
+  bool no_noise = false;              // `--no-noise`: range noise σ = 0, receiver noise off
 };
 
 // Loads the scenario (io/scenario/scenario_loader.hpp) and applies the overrides. Throws

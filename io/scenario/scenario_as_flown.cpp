@@ -50,7 +50,10 @@ FlownScenario scenario_as_flown(std::string_view yaml, const std::filesystem::pa
   }
   if (!root.IsMap()) throw input_error(path.string(), "not a YAML map");
   root["seed"] = overrides.seed;
-  if (overrides.no_noise) root["sensor"]["range_noise_sigma_m"] = 0;
+  if (overrides.no_noise) {
+    root["sensor"]["range_noise_sigma_m"] = 0;
+    root["sensor"]["receiver"]["noise"] = "off";
+  }
   if (overrides.duration_s) root["trajectory"]["duration_s"] = exact_text(*overrides.duration_s);
 
   const std::filesystem::path folder = path.parent_path();

@@ -2,8 +2,9 @@
 // scenario.yaml in a run folder (INTERFACE.md "Ground truth and detection evidence"): the scenario
 // as it was flown, so `owsim view`, `owsim pd` and `owsim score` need no --scenario, and `owsim run
 // scenario.yaml` flies the same frames again. The scenario's own YAML with the run's overrides
-// written in (seed, range noise off, the duration of the frames flown) and every file it names
-// (trajectory.file, scene.terrain.grid / dem, scene.meshes[].file, scene.power_lines[].file)
+// written in (seed; for no_noise `sensor.range_noise_sigma_m: 0` and `sensor.receiver.noise:
+// off`; the duration of the frames flown) and every file it names (trajectory.file,
+// scene.terrain.grid / dem, scene.meshes[].file, scene.power_lines[].file)
 // copied into the run folder as inputs/<k>/<name> (the k-th file read, with the files it pulled
 // in at their places relative to it), so the run folder reads only its own tree — it is a scenario
 // like any other (issue 33) — and works from any folder. Comments are not kept; keys keep their

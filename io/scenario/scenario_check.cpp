@@ -72,6 +72,14 @@ void check_ranges(const Scenario& scenario) {
   require_in_range(scenario.receiver.threshold, "sensor.threshold");
   require_in_range(scenario.receiver.range_noise_sigma_m, "sensor.range_noise_sigma_m");
   require_in_range(scenario.receiver.min_return_separation_m, "sensor.min_return_separation_m");
+  const ReceiverNoiseParams& noise = scenario.receiver.noise;
+  require_in_range(noise.noise_at_1km, "sensor.receiver.noise_at_1km");
+  require_in_range(noise.pulse_width_ns, "sensor.receiver.pulse_width_ns");
+  require_in_range(noise.sun_noise, "sensor.receiver.sun_noise");
+  require_in_range(noise.sky_noise, "sensor.receiver.sky_noise");
+  if (scenario.receiver.sun.given) {
+    require_in_range(scenario.receiver.sun.elevation_deg, "sun.elevation_deg");
+  }
   require_in_range(scenario.mount.roll_deg, "sensor.mount.roll_deg");
   require_in_range(scenario.mount.pitch_deg, "sensor.mount.pitch_deg");
   require_in_range(scenario.mount.yaw_deg, "sensor.mount.yaw_deg");

@@ -1,5 +1,7 @@
 #include "io/scenario/scenario_loader.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -20,6 +22,7 @@
 #include "io/scenario/gis_lines.hpp"
 #include "io/scenario/mesh_file.hpp"
 #include "io/scenario/scenario_check.hpp"
+#include "io/scenario/solar_position.hpp"
 #include "io/scenario/value_ranges.hpp"
 #include "io/scenario/yaml_reader.hpp"
 #include "sensor/range_counter.hpp"
@@ -64,6 +67,18 @@ double fraction(const YamlValue& value) {
   return x;
 }
 
+// on | off; also true | false, the same switch as YAML 1.1 reads it.
+bool on_or_off(const YamlValue& value) {
+  if (value.is_scalar()) {
+    std::string text = value.text();
+    std::transform(text.begin(), text.end(), text.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (text == "on" || text == "true") return true;
+    if (text == "off" || text == "false") return false;
+  }
+  value.fail("expected on or off, got " + value.describe());
+}
+
 int whole(const YamlValue& value) {
   return static_cast<int>(
       value.integer(std::numeric_limits<int>::min(), std::numeric_limits<int>::max()));
@@ -97,6 +112,7 @@ class ScenarioReader {
     // The scene last: a DEM is read for the flight's reach (the route and the counter's range).
     if (const auto sensor = root.get("sensor")) read_sensor(*sensor);
     if (const auto atmosphere = root.get("atmosphere")) read_atmosphere(*atmosphere);
+    if (const auto sun = root.get("sun")) read_sun(*sun);
     read_trajectory(root.require("trajectory"));
     if (const auto scene = root.get("scene")) {
       read_scene(*scene);
@@ -213,6 +229,19 @@ class ScenarioReader {
     scan.hellas_mirror_angle_factor_deg =
         map.number_or("hellas_mirror_angle_factor_deg", scan.hellas_mirror_angle_factor_deg);
     if (const auto counter = map.get("counter")) read_counter(*counter);
+    if (const auto statistics = map.get("receiver")) read_receiver(*statistics);
+    map.finish();
+  }
+
+  // sensor.receiver: the receiver's statistics (SENSOR-SPEC §11)
+  void read_receiver(const YamlValue& value) {
+    YamlMap map(value);
+    ReceiverNoiseParams& noise = scenario_.receiver.noise;
+    if (const auto on = map.get("noise")) noise.on = on_or_off(*on);
+    noise.noise_at_1km = map.number_or("noise_at_1km", noise.noise_at_1km);
+    noise.pulse_width_ns = map.number_or("pulse_width_ns", noise.pulse_width_ns);
+    noise.sun_noise = map.number_or("sun_noise", noise.sun_noise);
+    noise.sky_noise = map.number_or("sky_noise", noise.sky_noise);
     map.finish();
   }
 
@@ -254,6 +283,34 @@ class ScenarioReader {
     if (visibility) atmosphere.visibility_km = visibility->number();
     atmosphere.wavelength_um = map.number_or("wavelength_um", atmosphere.wavelength_um);
     map.finish();
+  }
+
+  // sun: {elevation_deg, azimuth_deg} or {time_utc} (SENSOR-SPEC §11 sunlight); a time is the
+  // sun's position at the origin (io/scenario/solar_position.hpp).
+  void read_sun(const YamlValue& value) {
+    YamlMap map(value);
+    const std::optional<YamlValue> time = map.get("time_utc");
+    const std::optional<YamlValue> elevation = map.get("elevation_deg");
+    const std::optional<YamlValue> azimuth = map.get("azimuth_deg");
+    map.finish();
+    if (time && (elevation || azimuth)) {
+      time->fail("give time_utc or elevation_deg and azimuth_deg, not both");
+    }
+    if (!time && !elevation && !azimuth) {
+      map.fail("needs {elevation_deg, azimuth_deg} or {time_utc: \"2026-06-21T10:30:00Z\"}");
+    }
+    SunPosition& sun = scenario_.receiver.sun;
+    if (time) {
+      try {
+        sun = solar_position(parse_utc_time(time->text()), scenario_.origin.lat_deg,
+                             scenario_.origin.lon_deg);
+      } catch (const Error& error) {
+        time->fail(error.what());
+      }
+    } else {
+      const double elevation_deg = map.require("elevation_deg").number();
+      sun = sun_at_angles(elevation_deg, map.require("azimuth_deg").number());
+    }
   }
 
   // ---- trajectory ----

@@ -45,9 +45,16 @@ constexpr std::array kRanges = {
     ValueRange{"sensor.counter.speed_of_light_mps", 2.9e8, 3.0e8, "m/s"},
     ValueRange{"sensor.counter.refractive_index_air", 1.0, 1.01, ""},
     ValueRange{"sensor.counter.timer_period_s", 1e-12, 1e-6, "s"},
+    // SENSOR-SPEC §11: σ_1km in energy_rel units (the threshold's, at most 1); a pulse of 0.1 ns
+    // to 1 µs; k_sun, k_sky variance ratios (calibrated near 1).
+    ValueRange{"sensor.receiver.noise_at_1km", 0.0, 1.0, ""},
+    ValueRange{"sensor.receiver.pulse_width_ns", 0.1, 1'000.0, "ns"},
+    ValueRange{"sensor.receiver.sun_noise", 0.0, 1'000.0, ""},
+    ValueRange{"sensor.receiver.sky_noise", 0.0, 1'000.0, ""},
     ValueRange{"atmosphere.transmission", 0.0, 1.0, ""},
     ValueRange{"atmosphere.visibility_km", 0.001, 1'000.0, "km"},
     ValueRange{"atmosphere.wavelength_um", 0.2, 20.0, "um"},
+    ValueRange{"sun.elevation_deg", -90.0, 90.0, "deg"},  // any finite azimuth_deg, wrapped
     ValueRange{"trajectory.waypoints.speed_mps", 1.0, 150.0, "m/s"},
     ValueRange{"trajectory.waypoints.max_bank_deg", 1.0, 60.0, "deg"},
     ValueRange{"trajectory.tick_s", 1e-9, 1.0, "s"},
