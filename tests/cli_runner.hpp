@@ -58,19 +58,19 @@ inline std::string read_whole_file(const std::filesystem::path& path) {
   return text.str();
 }
 
-// Runs `owsim arguments…` with `work_dir` as its working directory (relative paths in the
+// Runs `program arguments…` with `work_dir` as its working directory (relative paths in the
 // arguments are relative to it). stdout and stderr are captured through files in a temporary
 // folder, so a large output cannot block the child.
-inline CliResult run_cli(const std::vector<std::string>& arguments,
-                         const std::filesystem::path& work_dir) {
+inline CliResult run_program(const std::string& program, const std::vector<std::string>& arguments,
+                             const std::filesystem::path& work_dir) {
   CliResult result;
-  result.command = OWSIM_CLI_PATH;
+  result.command = program;
   for (const std::string& argument : arguments) result.command += " " + argument;
 
   const TempDir capture("owsim_cli_capture");
   const std::string out_path = (capture / "stdout").string();
   const std::string err_path = (capture / "stderr").string();
-  std::vector<std::string> argv_text = {OWSIM_CLI_PATH};
+  std::vector<std::string> argv_text = {program};
   argv_text.insert(argv_text.end(), arguments.begin(), arguments.end());
   std::vector<char*> argv;
   for (std::string& text : argv_text) argv.push_back(text.data());
@@ -96,6 +96,12 @@ inline CliResult run_cli(const std::vector<std::string>& arguments,
   result.out = read_whole_file(out_path);
   result.err = read_whole_file(err_path);
   return result;
+}
+
+// The built `owsim` (OWSIM_CLI_PATH), as run_program.
+inline CliResult run_cli(const std::vector<std::string>& arguments,
+                         const std::filesystem::path& work_dir) {
+  return run_program(OWSIM_CLI_PATH, arguments, work_dir);
 }
 
 inline CliResult run_cli(std::initializer_list<std::string> arguments,
