@@ -51,6 +51,8 @@ static_assert(offsetof(owsim_pose, heading_deg) == offsetof(owsim::PoseSample, h
 static_assert(OWSIM_CLASS_GROUND == static_cast<int>(owsim::SurfaceClass::ground));
 static_assert(OWSIM_CLASS_BUILDING == static_cast<int>(owsim::SurfaceClass::building));
 static_assert(OWSIM_CLASS_FOG == static_cast<int>(owsim::SurfaceClass::fog));
+static_assert(OWSIM_CLASS_NOISE == static_cast<int>(owsim::SurfaceClass::noise));
+static_assert(OWSIM_NO_OBJECT == owsim::kNoObject);
 static_assert(OWSIM_CLASS_UNKNOWN == owsim::kUnknownSurface);
 
 thread_local std::string last_error;

@@ -49,7 +49,7 @@ py::dtype record_dtype(const std::vector<Field>& fields, std::size_t itemsize) {
 }
 
 // points.csv's columns, in their order; `class` is the class code (owsim.CLASS_NAMES), `object`
-// the index into Simulation.object_ids.
+// the index into Simulation.object_ids (owsim.NO_OBJECT for a false return, class noise).
 py::dtype returns_dtype() {
   using R = ReturnRecord;
   // Made once and never freed: a static py::dtype would be released after the interpreter.
@@ -245,6 +245,7 @@ PYBIND11_MODULE(owsim, m) {
   }
   m.attr("CLASS_NAMES") = class_names;
   m.attr("UNKNOWN_CLASS") = kUnknownSurface;
+  m.attr("NO_OBJECT") = kNoObject;
 
   m.def(
       "view",

@@ -22,7 +22,8 @@ namespace fs = std::filesystem;
 using owsim::test::TempDir;
 
 const fs::path kExamples = fs::path(OWSIM_SOURCE_DIR) / "examples";
-const char* const kClassNames[] = {"wire", "pole", "tree", "ground", "building"};
+// OWSIM_CLASS_* by code.
+const char* const kClassNames[] = {"wire", "pole", "tree", "ground", "building", "fog", "noise"};
 
 // printf of a fixed-point cell, with points.csv's one spelling of zero ("0.0000", never "-0.0000").
 std::string fixed(double value, int decimals) {
@@ -43,8 +44,8 @@ std::string csv_row(const owsim_return& r, const owsim_simulation* simulation) {
          std::to_string(r.counter) + "," + fixed(r.e_m, 4) + "," + fixed(r.n_m, 4) + "," +
          fixed(r.u_m, 4) + "," + fixed(r.lat_deg, 9) + "," + fixed(r.lon_deg, 9) + "," +
          fixed(r.h_m, 4) + "," + kClassNames[r.surface] + "," +
-         owsim_simulation_object_id(simulation, r.object) + "," + energy + "," +
-         fixed(r.incidence_deg, 4);
+         (r.object == OWSIM_NO_OBJECT ? "" : owsim_simulation_object_id(simulation, r.object)) +
+         "," + energy + "," + (std::isnan(r.incidence_deg) ? "" : fixed(r.incidence_deg, 4));
 }
 
 TEST(CApi, EveryExampleAndHellasEqualsOwsimRunFrameForFrame) {
@@ -120,6 +121,7 @@ TEST(CApi, NullHandlesAndBadArgumentsGiveStatusCodes) {
   EXPECT_EQ(owsim_simulate_frame(simulation, -1, &frame), OWSIM_ERROR_ARGUMENT);
   EXPECT_EQ(owsim_simulate_frame(simulation, 0, nullptr), OWSIM_ERROR_ARGUMENT);
   EXPECT_EQ(owsim_simulation_object_id(simulation, 99), nullptr);
+  EXPECT_EQ(owsim_simulation_object_id(simulation, OWSIM_NO_OBJECT), nullptr);  // a false return's
   options.struct_size = 4;
   owsim_simulation* other = nullptr;
   EXPECT_EQ(owsim_simulation_open_with("x.yaml", &options, &other), OWSIM_ERROR_ARGUMENT);

@@ -84,6 +84,24 @@ TEST(ReportFrames, CellsFollowTheQuicklookLayout) {
   EXPECT_EQ(cell_range(f, 1, cells, 0), 0);  // no return
 }
 
+TEST(ReportFrames, AFalseFirstReturnIsMarkedNoiseUnlessAWirePoleTreeOrFogIs) {
+  const std::size_t cells = 127 * 159;
+  ReportPoints p;
+  // Frame 0, top row (fiber 65): line 10 a false return alone; line 11 a false return, a wire
+  // behind; line 12 ground, a false return behind.
+  add_return(p, 0, 10, 65, 1, 700.0f, SurfaceClass::noise);
+  add_return(p, 0, 11, 65, 1, 90.0f, SurfaceClass::noise);
+  add_return(p, 0, 11, 65, 2, 300.0f, SurfaceClass::wire);
+  add_return(p, 0, 12, 65, 1, 150.0f, SurfaceClass::ground);
+  add_return(p, 0, 12, 65, 2, 900.0f, SurfaceClass::noise);
+  const ReportFrames f = report_frames(p, range_image_layout(ScanParams{}), 0, 10);
+  EXPECT_EQ(cell_mark(f, 0, cells, 10), 1 + static_cast<int>(SurfaceClass::noise));
+  EXPECT_EQ(cell_range(f, 0, cells, 10), 7000);
+  EXPECT_EQ(cell_mark(f, 0, cells, 11), 1 + static_cast<int>(SurfaceClass::wire));
+  EXPECT_EQ(cell_mark(f, 0, cells, 12), 0);
+  EXPECT_EQ(cell_range(f, 0, cells, 12), 1500);
+}
+
 TEST(ReportFrames, LongFlightsShowEvenlySpreadFrames) {
   ReportPoints p;
   add_return(p, 9, 0, 1, 1, 10.0f, SurfaceClass::ground);

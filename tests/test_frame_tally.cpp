@@ -19,8 +19,8 @@ constexpr std::size_t kNamed = 40;  // objects 0..39; 40 the terrain, 41.. fog v
 struct RandomFrame {
   std::vector<Pulse> pulses;
   std::vector<PulseReturns> returns;
-  std::vector<std::uint8_t> bits;                // computed here, as a recount
-  std::vector<FrameTally::ObjectHit> recount;    // every valid return on an object, in order
+  std::vector<std::uint8_t> bits;              // computed here, as a recount
+  std::vector<FrameTally::ObjectHit> recount;  // every valid return on an object, in order
 };
 
 RandomFrame random_frame(std::uint64_t seed, std::size_t pulses, double object_share) {
@@ -40,8 +40,12 @@ RandomFrame random_frame(std::uint64_t seed, std::size_t pulses, double object_s
       Return& ret = returns.returns[r];
       ret.object_index = unit(rng) < object_share ? named(rng) : other(rng);
       ret.true_range_m = 100.0 + unit(rng) * 900.0;
-      ret.surface = static_cast<std::uint8_t>(
-          unit(rng) < 0.2 ? SurfaceClass::fog : SurfaceClass::ground);
+      ret.surface =
+          static_cast<std::uint8_t>(unit(rng) < 0.2 ? SurfaceClass::fog : SurfaceClass::ground);
+      if (unit(rng) < 0.1) {  // a false return (SENSOR-SPEC §11): no object
+        ret.object_index = kNoObject;
+        ret.surface = static_cast<std::uint8_t>(SurfaceClass::noise);
+      }
     }
     for (int r = 0; r < returns.count; ++r) {
       const Return& ret = returns.returns[r];
@@ -49,8 +53,8 @@ RandomFrame random_frame(std::uint64_t seed, std::size_t pulses, double object_s
       bits |= static_cast<std::uint8_t>(1u << r);
       const bool behind_fog =
           r == 1 && returns.returns[0].surface == static_cast<std::uint8_t>(SurfaceClass::fog);
-      out.recount.push_back({ret.object_index, behind_fog ? 1u : 0u, pulse.time_s,
-                             ret.true_range_m});
+      out.recount.push_back(
+          {ret.object_index, behind_fog ? 1u : 0u, pulse.time_s, ret.true_range_m});
     }
     out.returns.push_back(returns);
     out.bits.push_back(bits);
@@ -83,6 +87,42 @@ TEST(FrameTally, ObjectHitsFromTheBitsFromTheReturnsAndARecountAgree) {
     EXPECT_EQ(as_tuples(summary.object_hits), as_tuples(frame.recount)) << seed;
     EXPECT_GT(frame.recount.size(), pulses / 100) << seed;  // something to compare
   }
+}
+
+TEST(FrameTally, FalseReturnsAreNoObjectsAndCountAsNoise) {
+  // Pulse 0: a false return, then wire 3; pulse 1: wire 5, then a false return; pulse 2: two false
+  // returns. Object kNoObject is past every named object: bits and hits hold the wires alone.
+  Return noise;
+  noise.object_index = kNoObject;
+  noise.surface = static_cast<std::uint8_t>(SurfaceClass::noise);
+  Return wire3, wire5;
+  wire3.object_index = 3;
+  wire3.true_range_m = 250.0;
+  wire5.object_index = 5;
+  wire5.true_range_m = 310.0;
+  std::vector<PulseReturns> returns(3);
+  returns[0] = {2, 0, 0, {noise, wire3}};
+  returns[1] = {2, 0, 0, {wire5, noise}};
+  returns[2] = {2, 0, 0, {noise, noise}};
+  EXPECT_EQ(object_return_bits(returns[0], kNamed), 2);
+  EXPECT_EQ(object_return_bits(returns[1], kNamed), 1);
+  EXPECT_EQ(object_return_bits(returns[2], kNamed), 0);
+  std::vector<Pulse> pulses(3);
+  FrameTally tally;
+  FlightSummary::tally(kNamed, pulses, returns, tally);
+  EXPECT_EQ(tally.returns_by_class[static_cast<std::size_t>(SurfaceClass::noise)], 4u);
+  EXPECT_EQ(tally.returns_by_class[static_cast<std::size_t>(SurfaceClass::wire)], 2u);
+  ASSERT_EQ(tally.object_hits.size(), 2u);
+  EXPECT_EQ(tally.object_hits[0].object, 3u);
+  EXPECT_EQ(tally.object_hits[0].through_fog, 0u);  // behind a false return, not fog: clear
+  EXPECT_EQ(tally.object_hits[1].object, 5u);
+  // truth.csv's tally (io/run/frame_encoder.cpp): the same hits from the returns and the bits.
+  const std::vector<std::uint8_t> bits = {2, 1, 0};
+  FrameTally from_returns, from_bits;
+  FlightSummary::tally(kNamed, pulses, returns, from_returns, TallyScope::object_hits);
+  FlightSummary::tally(kNamed, pulses, returns, from_bits, TallyScope::object_hits, bits);
+  EXPECT_EQ(as_tuples(from_returns.object_hits), as_tuples(tally.object_hits));
+  EXPECT_EQ(as_tuples(from_bits.object_hits), as_tuples(tally.object_hits));
 }
 
 TEST(FrameTally, BitsOfAnotherLengthAreNotTrusted) {

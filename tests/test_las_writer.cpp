@@ -83,23 +83,13 @@ std::vector<PointRecord> scattered_points(const Geodetic& origin, int count, dou
     p.time_s = 3600.0 + 0.0000163636 * k;
     p.enu_m = {horizontal(rng), horizontal(rng), up(rng)};
     p.geodetic = frame.geodetic_from_enu(p.enu_m);
-    switch (k % 5) {
-      case 0:
-        p.surface = SurfaceClass::wire;
-        break;
-      case 1:
-        p.surface = SurfaceClass::pole;
-        break;
-      case 2:
-        p.surface = SurfaceClass::tree;
-        break;
-      case 3:
-        p.surface = SurfaceClass::ground;
-        break;
-      default:
-        p.surface = std::nullopt;
-    }
+    const int code = k % (static_cast<int>(kSurfaceClassCount) + 1);
+    if (code < static_cast<int>(kSurfaceClassCount)) p.surface = static_cast<SurfaceClass>(code);
     p.energy_rel = (k % 17 == 0) ? std::numeric_limits<double>::quiet_NaN() : energy(rng);
+    if (p.surface == SurfaceClass::noise) {  // a false return: energy_rel = T, no incidence
+      p.energy_rel = 0.0029;
+      p.object_index = kNoObject;
+    }
     p.scan_angle_deg = beta(rng);
     points.push_back(p);
   }
@@ -132,6 +122,8 @@ TEST(LasFieldMappings, ClassificationScanAngleAndDate) {
   EXPECT_EQ(las_classification(SurfaceClass::wire), 14);
   EXPECT_EQ(las_classification(SurfaceClass::pole), 15);
   EXPECT_EQ(las_classification(SurfaceClass::building), 6);  // ASPRS "Building"
+  EXPECT_EQ(las_classification(SurfaceClass::fog), 18);      // ASPRS "High Noise"
+  EXPECT_EQ(las_classification(SurfaceClass::noise), 7);     // ASPRS "Low Point (noise)"
   EXPECT_EQ(las_classification(std::nullopt), 0);
   EXPECT_EQ(las_scan_angle(12.0), 2000);
   EXPECT_EQ(las_scan_angle(-30.0), -5000);
@@ -280,7 +272,9 @@ assert (max_x, min_x) == (xyz[:, 0].max(), xyz[:, 0].min()), (max_x, min_x)
 assert (max_y, min_y) == (xyz[:, 1].max(), xyz[:, 1].min()), (max_y, min_y)
 assert (max_z, min_z) == (xyz[:, 2].max(), xyz[:, 2].min()), (max_z, min_z)
 
-codes = {0: 14, 1: 15, 2: 5, 3: 2, -1: 0}  # wire, pole, tree, ground, unknown
+# wire, pole, tree, ground, building, fog (high noise), noise (low noise), unknown
+codes = {0: 14, 1: 15, 2: 5, 3: 2, 4: 6, 5: 18, 6: 7, -1: 0}
+assert set(int(c) for c in cls) == set(codes), sorted(set(cls))
 assert np.array_equal(pts['classification'], [codes[int(c)] for c in cls])
 assert np.array_equal(pts['returns'] & 0x0F, ret)
 assert np.array_equal(pts['returns'] >> 4, nret)
@@ -296,8 +290,8 @@ assert np.all(pts['flags'] == 0) and np.all(pts['point_source'] == 0)
 print('OK', count)
 )PY";
 
-// Writes the points' expected values for the Python reader: lat, lon, h, class (0 wire, 1 pole,
-// 2 tree, 3 ground, −1 unknown), return, returns, time, energy (nan), β, fiber; 17 digits, so
+// Writes the points' expected values for the Python reader: lat, lon, h, class (owsim's code,
+// geometry/scene.hpp; −1 unknown), return, returns, time, energy (nan), β, fiber; 17 digits, so
 // every double reads back exactly.
 void write_expected(const std::filesystem::path& path, const std::vector<PointRecord>& points) {
   std::ofstream out(path);

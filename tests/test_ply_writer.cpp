@@ -87,7 +87,7 @@ assert np.array_equal(vertices['y'], exp[:, 1])
 assert np.array_equal(vertices['z'], exp[:, 2])
 assert np.array_equal(vertices['intensity'], exp[:, 3].astype(np.float32), equal_nan=True)
 assert np.array_equal(vertices['class'], exp[:, 4])
-print('OK', count)
+print('OK', count, 'noise', int(np.sum(vertices['class'] == 7)))
 )PY";
 
 std::vector<PointRecord> scattered_points(int count) {
@@ -98,18 +98,25 @@ std::vector<PointRecord> scattered_points(int count) {
     PointRecord p;
     p.enu_m = {coordinate(rng), coordinate(rng), coordinate(rng) / 10.0};
     p.energy_rel = (k % 13 == 0) ? std::numeric_limits<double>::quiet_NaN() : energy(rng);
-    if (k % 5 < 4) p.surface = static_cast<SurfaceClass>(k % 5);
+    const int code = k % (static_cast<int>(kSurfaceClassCount) + 1);  // every class, unknown
+    if (code < static_cast<int>(kSurfaceClassCount)) p.surface = static_cast<SurfaceClass>(code);
+    if (p.surface == SurfaceClass::noise) p.energy_rel = 0.0029;  // a false return: T
     points.push_back(p);
   }
   return points;
 }
 
+// The class column INTERFACE.md gives, by owsim's class code (geometry/scene.hpp): wire, pole,
+// tree, ground, building, fog, noise ("PLY class 7").
+constexpr int kExpectedPlyClass[] = {0, 1, 2, 3, 4, 5, 7};
+
 void write_expected(const std::filesystem::path& path, const std::vector<PointRecord>& points) {
   std::ofstream out(path);
   out.precision(17);
   for (const PointRecord& p : points) {
+    const int expected_class = p.surface ? kExpectedPlyClass[static_cast<int>(*p.surface)] : 255;
     out << p.enu_m.x() << ',' << p.enu_m.y() << ',' << p.enu_m.z() << ',' << p.energy_rel << ','
-        << static_cast<int>(ply_class(p.surface)) << '\n';
+        << expected_class << '\n';
   }
 }
 
@@ -130,6 +137,8 @@ TEST(PlyHeader, ClassCodes) {
   EXPECT_EQ(ply_class(SurfaceClass::tree), 2);
   EXPECT_EQ(ply_class(SurfaceClass::ground), 3);
   EXPECT_EQ(ply_class(SurfaceClass::building), 4);
+  EXPECT_EQ(ply_class(SurfaceClass::fog), 5);
+  EXPECT_EQ(ply_class(SurfaceClass::noise), 7);  // INTERFACE.md "PLY class 7"
   EXPECT_EQ(ply_class(std::nullopt), 255);
 }
 
@@ -147,7 +156,7 @@ TEST_F(PlyWriterTest, AStrictPythonReaderAndNumpyReadEveryVertex) {
   EXPECT_EQ(run_python(kPythonPlyReader,
                        {.arguments = path().string() + " " + (directory_ / "expected.csv").string(),
                         .with_stderr = true}),
-            "OK 50000\n");
+            "OK 50000 noise 6250\n");
 }
 
 TEST_F(PlyWriterTest, AnEmptyCloudIsAValidFile) {
@@ -157,7 +166,7 @@ TEST_F(PlyWriterTest, AnEmptyCloudIsAValidFile) {
   EXPECT_EQ(run_python(kPythonPlyReader,
                        {.arguments = path().string() + " " + (directory_ / "expected.csv").string(),
                         .with_stderr = true}),
-            "OK 0\n");
+            "OK 0 noise 0\n");
 }
 
 TEST_F(PlyWriterTest, NothingUnderTheFinalNameBeforeFinishOrAfterAFailure) {

@@ -154,6 +154,22 @@ TEST_F(PointsCsvWriterTest, UnknownClassObjectEnergyAndIncidence) {
   EXPECT_EQ(c[17], "");
 }
 
+TEST_F(PointsCsvWriterTest, AFalseReturnIsNoiseWithNoObjectItsThresholdAndNoIncidence) {
+  PointRecord p = sample_point();
+  p.surface = SurfaceClass::noise;
+  p.object_index = kNoObject;
+  p.energy_rel = 0.0029;  // T
+  p.incidence_deg = std::numeric_limits<double>::quiet_NaN();
+  PointsCsvWriter writer(path(), {"span_a/1", "span_a/2"});
+  writer.write(std::span(&p, 1));
+  writer.finish();
+  const auto lines = read_lines(path());
+  ASSERT_EQ(lines.size(), 2u);
+  EXPECT_EQ(lines[1],
+            "123456789012,20351,159,127,2,1234.123456789,987.6543,4095,-1234.5679,98765.4322,"
+            "-12.3457,48.688112346,-10.844712346,562.1235,noise,,0.0029,");
+}
+
 TEST_F(PointsCsvWriterTest, EveryClassAndObjectIdFromTheTable) {
   const std::vector<std::string> ids = {"north/1", "pole 7", "oak, the big one", "say \"hi\"",
                                         "barn"};

@@ -249,6 +249,11 @@ TEST_F(QuicklookTest, RangeImageCellsOnAnUpwardSweep) {
   frame.add_return(10, 45, 95.0, SurfaceClass::wire);
   frame.add_return(11, 45, 90.0, SurfaceClass::pole);
   frame.add_return(70, 100, 600.0, SurfaceClass::ground);
+  frame.add_return(12, 50, 300.0, SurfaceClass::noise);  // a false return alone
+  frame.add_return(13, 50, 80.0, SurfaceClass::noise);   // a false return before a wire
+  frame.add_return(13, 50, 320.0, SurfaceClass::wire);
+  frame.add_return(14, 50, 200.0, SurfaceClass::ground);  // ground before a false return
+  frame.add_return(14, 50, 400.0, SurfaceClass::noise);
   quicklook.add_frame(frame.view());
 
   const DecodedImage image = read_png(quicklook_dir() / "frame_000000.png");
@@ -275,6 +280,10 @@ TEST_F(QuicklookTest, RangeImageCellsOnAnUpwardSweep) {
   const Rgb8 ground = cell(image, expected_row(scan, 100), 70);
   EXPECT_EQ(ground, range_ramp_colour(600.0 / timeout_range_m(scan.counter)));
   EXPECT_NE(ground, kQuicklookNoReturn);
+  const int row50 = expected_row(scan, 50);
+  EXPECT_EQ(cell(image, row50, 12), (Rgb8{255, 230, 0}));  // yellow: a false return
+  EXPECT_EQ(cell(image, row50, 13), kQuicklookWire);
+  EXPECT_EQ(cell(image, row50, 14), range_ramp_colour(200.0 / timeout_range_m(scan.counter)));
   EXPECT_EQ(files(), (std::set<std::string>{"frame_000000.png"}));
 }
 
@@ -361,6 +370,8 @@ TEST_F(QuicklookTest, MapDrawsObjectsTrajectoryAndHits) {
   frame.add_return(21, 30, 150.0, SurfaceClass::pole);    // (120.5, −50.5)
   frame.add_return(22, 30, 50.0, SurfaceClass::tree);     // (120.5, −150.5)
   frame.add_return(23, 30, 5000.0, SurfaceClass::wire);   // off the map: dropped
+  frame.add_return(24, 30, 200.0, SurfaceClass::noise);  // (120.5, −0.5): a false return, no place
+  frame.add_return(25, 30, 220.0, SurfaceClass::fog);    // (120.5, 19.5): a fog echo, no place
   quicklook.add_frame(frame.view());
   quicklook.finish();
 
@@ -391,6 +402,8 @@ TEST_F(QuicklookTest, MapDrawsObjectsTrajectoryAndHits) {
   EXPECT_EQ(map.at(421, 250), kQuicklookWire);  // obstacle hits are 3 px dots
   EXPECT_EQ(map.at(420, 350), kQuicklookPole);
   EXPECT_EQ(map.at(420, 450), kQuicklookTree);
+  EXPECT_EQ(map.at(420, 300), kQuicklookFlatTerrain);
+  EXPECT_EQ(map.at(420, 280), kQuicklookFlatTerrain);
   EXPECT_EQ(files(), (std::set<std::string>{"map.png"}));
 }
 

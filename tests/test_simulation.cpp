@@ -53,7 +53,7 @@ std::string csv_row(const ReturnRecord& r, const std::vector<std::string>& ids) 
   fixed(r.h_m, 4);
   row += to_string(static_cast<SurfaceClass>(r.surface));
   row += ',';
-  row += csv_cell(ids.at(r.object));
+  if (r.object != kNoObject) row += csv_cell(ids.at(r.object));  // a false return: empty
   row += ',';
   append_csv_significant(row, r.energy_rel, 9);
   row += ',';
@@ -168,7 +168,8 @@ TEST(Simulation, ScenarioBuiltInCodeIsCheckedWithTheLoadersMessages) {
        [](Scenario& s) { s.trajectory.waypoints_enu_m.pop_back(); }},
       {"reflectivity: 0.3}", "reflectivity: 1.5}",
        [](Scenario& s) { s.scene.spans[0].pole_reflectivity = 1.5; }},
-      {"threshold: 0.005", "threshold: 2", [](Scenario& s) { s.receiver.threshold = 2; }},
+      {"returns: first_second", "returns: first_second\n  threshold: 2",
+       [](Scenario& s) { s.receiver.threshold = 2; }},
       {"    - id: line-a", "    - id: line/a", [](Scenario& s) { s.scene.spans[0].id = "line/a"; }},
   };
   const std::string text = test::read_whole_file(kExamples / "single_span.yaml");
@@ -256,7 +257,8 @@ TEST(Simulation, BadInputIsOneLineError) {
     (void)Simulation::open("/nonexistent/scenario.yaml");
     FAIL() << "no error";
   } catch (const FileError& error) {
-    EXPECT_EQ(std::string(error.what()), "/nonexistent/scenario.yaml: cannot read the YAML file: no such file");
+    EXPECT_EQ(std::string(error.what()),
+              "/nonexistent/scenario.yaml: cannot read the YAML file: no such file");
   }
   EXPECT_EQ(
       error_of([] { (void)Simulation::from_yaml("name: [", "bad.yaml"); }).rfind("bad.yaml:", 0),

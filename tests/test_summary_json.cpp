@@ -13,6 +13,7 @@
 #include <random>
 #include <string>
 #include <tuple>
+#include <vector>
 
 #include "geometry/error.hpp"
 #include "io/run/flight_summary.hpp"
@@ -43,7 +44,8 @@ class SummaryJsonTest : public ::testing::Test {
 // when `fog`.
 Scene scene_of(int wires, int trees, int meshes, bool fog = false) {
   Scene scene;
-  const char* odd[] = {"a \"quoted\" id", "back\\slash", "tab\there", "nl\nid", "ünïcödé ✓", "\x01"};
+  const char* odd[] = {"a \"quoted\" id", "back\\slash", "tab\there",
+                       "nl\nid",          "ünïcödé ✓",   "\x01"};
   for (int i = 0; i < wires; ++i) {
     Conductor& wire = scene.conductors.emplace_back();
     wire.id = i < 6 ? std::string(odd[i]) : "span-" + std::to_string(i) + "/1";
@@ -69,7 +71,8 @@ FlightSummary random_summary(std::size_t objects, std::uint64_t seed, int frames
   for (int frame = 0; frame < frames; ++frame) {
     FrameTally tally;
     tally.pulses = 20352;
-    tally.returns_by_class = {rng() % 100, rng() % 100, rng() % 1000, rng() % 10000, rng() % 300};
+    tally.returns_by_class = {rng() % 100, rng() % 100, rng() % 1000, rng() % 10000,
+                              rng() % 300, rng() % 200, rng() % 7};
     tally.second_returns = rng() % 50;
     for (int k = 0; k < 40; ++k) {
       const double range = std::pow(10.0, 4.0 * unit(rng) - 1.0);
@@ -93,7 +96,12 @@ std::string oracle_text(const FlightSummary& summary, const Scene& scene,
                      {"pole", summary.returns_of(SurfaceClass::pole)},
                      {"tree", summary.returns_of(SurfaceClass::tree)},
                      {"ground", summary.returns_of(SurfaceClass::ground)},
-                     {"building", summary.returns_of(SurfaceClass::building)}};
+                     {"building", summary.returns_of(SurfaceClass::building)},
+                     {"noise", summary.returns_of(SurfaceClass::noise)}};
+  head["false_returns_per_pulse"] =
+      summary.pulses() == 0 ? 0.0
+                            : static_cast<double>(summary.returns_of(SurfaceClass::noise)) /
+                                  static_cast<double>(summary.pulses());
   const bool weather = !scene.fog.empty();
   if (weather) head["returns"]["fog"] = summary.returns_of(SurfaceClass::fog);
   std::map<std::string, std::pair<int, int>> by_class = {
@@ -145,14 +153,20 @@ std::string oracle_text(const FlightSummary& summary, const Scene& scene,
 
 TEST_F(SummaryJsonTest, TextIsNlohmannsForTheSameDocument) {
   const nlohmann::json facts = {{"scenario", "corridor"}, {"seed", 2024}, {"wall_s", 0.1 + 0.2},
-                                {"setup_s", 1e-7},        {"threads", 2},  {"version", "0.1.0"}};
-  for (const auto& [wires, trees, meshes, fog] :
-       {std::tuple{0, 0, 0, false}, {3, 0, 0, false}, {0, 7, 0, false}, {59, 417, 5, false},
-        {6, 3000, 0, false}, {0, 0, 9, false}, {59, 417, 5, true}, {0, 0, 0, true}}) {
+                                {"setup_s", 1e-7},        {"threads", 2}, {"version", "0.1.0"}};
+  for (const auto& [wires, trees, meshes, fog] : {std::tuple{0, 0, 0, false},
+                                                  {3, 0, 0, false},
+                                                  {0, 7, 0, false},
+                                                  {59, 417, 5, false},
+                                                  {6, 3000, 0, false},
+                                                  {0, 0, 9, false},
+                                                  {59, 417, 5, true},
+                                                  {0, 0, 0, true}}) {
     SCOPED_TRACE(std::to_string(wires) + " wires, " + std::to_string(trees) + " trees, " +
                  std::to_string(meshes) + " meshes" + (fog ? ", fog" : ""));
     const Scene scene = scene_of(wires, trees, meshes, fog);
-    const std::size_t objects = scene.conductors.size() + scene.cylinders.size() + scene.meshes.size();
+    const std::size_t objects =
+        scene.conductors.size() + scene.cylinders.size() + scene.meshes.size();
     const FlightSummary summary = random_summary(objects, objects + 1, objects == 0 ? 0 : 25);
     const fs::path path = dir_ / "summary.json";
     write_summary_json(path, summary, scene, facts);
@@ -161,6 +175,62 @@ TEST_F(SummaryJsonTest, TextIsNlohmannsForTheSameDocument) {
     const std::string text = content(path);
     EXPECT_LT(text.find("\"returns\""), text.find("\"objects\": ["));
   }
+}
+
+TEST_F(SummaryJsonTest, FalseReturnsAreCountedAndNoObjectsReturns) {
+  // Two frames of 4 pulses: a false return alone, a false return before a wire, a wire before a
+  // false return, ground; the false returns (object kNoObject) are counted under returns.noise
+  // and reach no object. Without any, returns.noise is 0 and so is the rate.
+  const Scene scene = scene_of(2, 0, 0);
+  const auto ret = [](SurfaceClass surface, std::uint32_t object, double range_m) {
+    Return r;
+    r.surface = static_cast<std::uint8_t>(surface);
+    r.object_index = object;
+    r.range_m = range_m;
+    r.true_range_m = range_m;
+    r.energy_rel = 0.0029;
+    r.incidence_deg = std::numeric_limits<double>::quiet_NaN();
+    return r;
+  };
+  std::vector<Pulse> pulses(4);
+  std::vector<PulseReturns> returns(4);
+  returns[0].count = 1;
+  returns[0].returns[0] = ret(SurfaceClass::noise, kNoObject, 412.5);
+  returns[1].count = 2;
+  returns[1].returns[0] = ret(SurfaceClass::noise, kNoObject, 97.0);
+  returns[1].returns[1] = ret(SurfaceClass::wire, 1, 240.0);
+  returns[2].count = 2;
+  returns[2].returns[0] = ret(SurfaceClass::wire, 1, 239.0);
+  returns[2].returns[1] = ret(SurfaceClass::noise, kNoObject, 1100.0);
+  returns[3].count = 1;
+  returns[3].returns[0] = ret(SurfaceClass::ground, 2, 300.0);
+  FlightSummary summary(2);
+  for (std::int64_t frame = 0; frame < 2; ++frame) {
+    FrameTally tally;
+    FlightSummary::tally(2, pulses, returns, tally);
+    summary.add_frame(frame, tally);
+  }
+  write_summary_json(dir_ / "summary.json", summary, scene, nlohmann::json::object());
+  const nlohmann::json written = nlohmann::json::parse(content(dir_ / "summary.json"));
+  EXPECT_EQ(written["pulses"], 8);
+  EXPECT_EQ(written["returns"]["noise"], 6);
+  EXPECT_EQ(written["returns"]["wire"], 4);
+  EXPECT_EQ(written["returns"]["ground"], 2);
+  EXPECT_EQ(written["second_returns"], 4);
+  EXPECT_EQ(written["false_returns_per_pulse"], 0.75);
+  EXPECT_EQ(written["objects"][0]["returns"], 0);
+  EXPECT_EQ(written["objects"][1]["returns"], 4);
+  EXPECT_EQ(written["objects_by_class"]["wire"]["seen"], 1);
+
+  FlightSummary quiet(2);
+  FrameTally tally;
+  tally.pulses = 20352;
+  tally.returns_by_class[static_cast<std::size_t>(SurfaceClass::ground)] = 19000;
+  quiet.add_frame(0, tally);
+  write_summary_json(dir_ / "quiet.json", quiet, scene, nlohmann::json::object());
+  const nlohmann::json none = nlohmann::json::parse(content(dir_ / "quiet.json"));
+  EXPECT_EQ(none["returns"]["noise"], 0);
+  EXPECT_EQ(none["false_returns_per_pulse"], 0.0);
 }
 
 TEST_F(SummaryJsonTest, ASummaryOfAnotherSceneIsRefused) {

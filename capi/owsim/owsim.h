@@ -87,7 +87,7 @@ typedef struct owsim_simulation_options {
   double duration_s;    /* seconds of flight instead of frames; 0: unset */
   uint64_t seed;        /* replaces the scenario's seed when override_seed is nonzero */
   int32_t override_seed;
-  int32_t no_noise; /* nonzero: range noise off (sigma = 0) */
+  int32_t no_noise; /* nonzero: range noise (sigma = 0) and receiver noise off */
   /* Co-simulation over terrain: the east/north box {west, south, east, north} (m, local frame)
    * the host may fly in besides the scenario's own flight; all 0: that flight's area only.
    * Read only when struct_size covers it (clients built before it was added keep working). */
@@ -141,7 +141,8 @@ typedef struct owsim_return {
   uint16_t counter;      /* the range counter the word holds */
   uint8_t surface;       /* points.csv `class`: OWSIM_CLASS_* */
   uint8_t number_of_returns;
-  uint32_t object;      /* points.csv `object`: owsim_simulation_object_id(simulation, object) */
+  uint32_t object;      /* points.csv `object`: owsim_simulation_object_id(simulation, object);
+                           OWSIM_NO_OBJECT for a false return (OWSIM_CLASS_NOISE) */
   double e_m, n_m, u_m; /* local East-North-Up metres from the scenario origin */
   double lat_deg, lon_deg, h_m; /* WGS-84 */
   double energy_rel;            /* received / transmitted energy */
@@ -155,8 +156,12 @@ enum {
   OWSIM_CLASS_GROUND = 3,
   OWSIM_CLASS_BUILDING = 4,
   OWSIM_CLASS_FOG = 5,
+  OWSIM_CLASS_NOISE = 6, /* a false return: the receiver's noise crossed the threshold */
   OWSIM_CLASS_UNKNOWN = 255
 };
+
+/* owsim_return.object of a return that belongs to no object (a false return). */
+#define OWSIM_NO_OBJECT UINT32_C(0xFFFFFFFF)
 
 /* One pulse of the scan pattern (`owsim pattern`'s columns). */
 typedef struct owsim_pulse {

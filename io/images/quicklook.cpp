@@ -107,12 +107,27 @@ Rgb8 class_colour(SurfaceClass surface) {
       return kQuicklookPole;
     case SurfaceClass::tree:
       return kQuicklookTree;
+    case SurfaceClass::noise:
+      return kQuicklookNoise;
     case SurfaceClass::ground:
     case SurfaceClass::building:
     case SurfaceClass::fog:
       return kQuicklookGroundHit;
   }
   return kQuicklookGroundHit;
+}
+
+// A range-image cell's colour: its marked class, a false first return's, else the first return's
+// range on the ramp.
+Rgb8 range_cell_colour(const PulseReturns& returns, double range_full_scale_m) {
+  if (const std::optional<SurfaceClass> marked = marked_class(returns)) {
+    return class_colour(*marked);
+  }
+  const Return& first = returns.returns[0];
+  if (first.surface == static_cast<std::uint8_t>(SurfaceClass::noise)) {
+    return class_colour(SurfaceClass::noise);
+  }
+  return range_ramp_colour(first.range_m / range_full_scale_m);
 }
 
 }  // namespace
@@ -330,7 +345,7 @@ void Quicklook::add_frame(const FrameView& frame) {
     const PulseReturns& pulse_returns = frame.returns[k];
     for (int i = 0; i < std::min(pulse_returns.count, 2); ++i) {
       const Return& r = pulse_returns.returns[i];
-      // Fog echoes are not places on the map.
+      // Fog echoes and false returns (class noise) are not places on the map.
       if (r.surface >= static_cast<std::uint8_t>(SurfaceClass::fog)) continue;
       const Eigen::Vector3d point = frame.rays[k].origin_enu_m + r.range_m * frame.rays[k].dir_enu;
       mark(map_px(point.x(), point.y()), map_hit_bit(static_cast<SurfaceClass>(r.surface)));
@@ -357,10 +372,7 @@ void Quicklook::write_range_image(const FrameView& frame) {
     const int column = frame.sweep.direction < 0 ? lines_per_frame_ - 1 - pulse.line : pulse.line;
     const PulseReturns& returns = frame.returns[k];
     if (returns.count < 1) continue;
-    const std::optional<SurfaceClass> marked = marked_class(returns);
-    frame_cells_.set(column, row,
-                     marked ? class_colour(*marked)
-                            : range_ramp_colour(returns.returns[0].range_m / range_full_scale_m_));
+    frame_cells_.set(column, row, range_cell_colour(returns, range_full_scale_m_));
   }
   write_png(directory_ / quicklook_frame_file_name(frame.frame),
             enlarged(frame_cells_, options_.range_image_scale), options_.file_options);

@@ -11,16 +11,18 @@
 // fiber has no row. Columns are the lines in β order, β rising left → right: line l is column l on
 // frames sweeping up (direction +1) and column lines−1−l on frames sweeping down, so successive
 // frames line up. A cell's colour: the class colour if any of the pulse's returns is a wire, pole
-// or tree (wire before pole before tree: a wire behind a nearer tree still shows), else the first
-// return's range on the blue range ramp (io/images/png_image.hpp: light = near, dark navy = the
-// full scale, the timeout range 1238 m by default), black when the pulse has no return.
+// or tree (wire before pole before tree: a wire behind a nearer tree still shows), else yellow
+// when the first return is a false return (class noise, SENSOR-SPEC §11), else the first return's
+// range on the blue range ramp (io/images/png_image.hpp: light = near, dark navy = the full scale,
+// the timeout range 1238 m by default), black when the pulse has no return.
 //
 // Map `map.png`, written by finish(): the fixed region given to the constructor (east right, north
 // up, square pixels, the longer side map_size_px), drawn bottom to top: the terrain (dark; a grid
 // shaded by height from dark green to tan, flat uniform, none or off the grid grey), ground hits
 // (blue-grey), trees (dark green discs, their radius), conductors (light grey lines), poles (white
 // discs, ≥ 2 px), the trajectory (magenta, 3 px wide), then tree, pole and wire hits as 3 px dots
-// in their class colours. Everything outside the region is left out.
+// in their class colours; fog returns and false returns are no places, so not on the map.
+// Everything outside the region is left out.
 //
 // Bounded memory whatever the flight's length: the scene objects are rasterised in the
 // constructor and the Quicklook keeps no reference to the scene; hits and the trajectory go into a
@@ -62,6 +64,8 @@ inline constexpr Rgb8 kQuicklookWire{255, 0, 0};
 inline constexpr Rgb8 kQuicklookPole{255, 150, 0};
 inline constexpr Rgb8 kQuicklookTree{60, 220, 80};
 inline constexpr Rgb8 kQuicklookNoReturn{0, 0, 0};
+// Range images only: a false first return.
+inline constexpr Rgb8 kQuicklookNoise{255, 230, 0};
 // Map-only colours.
 inline constexpr Rgb8 kQuicklookGroundHit{96, 112, 150};
 inline constexpr Rgb8 kQuicklookConductor{225, 225, 225};

@@ -25,6 +25,7 @@ constexpr std::size_t kBufferPoints = 34952;  // ≈ 1 MiB of 30-byte records
 constexpr std::uint16_t kLasClassGround = 2;
 constexpr std::uint16_t kLasClassHighVegetation = 5;
 constexpr std::uint16_t kLasClassBuilding = 6;
+constexpr std::uint16_t kLasClassLowNoise = 7;
 constexpr std::uint16_t kLasClassWireConductor = 14;
 constexpr std::uint16_t kLasClassTransmissionTower = 15;
 constexpr std::uint16_t kLasClassHighNoise = 18;
@@ -83,6 +84,8 @@ std::uint8_t las_classification(std::optional<SurfaceClass> surface) {
       return kLasClassBuilding;
     case SurfaceClass::fog:
       return kLasClassHighNoise;
+    case SurfaceClass::noise:
+      return kLasClassLowNoise;
   }
   return 0;
 }

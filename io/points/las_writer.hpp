@@ -18,8 +18,9 @@
 // Fields of a point: intensity = round(min(max(energy_rel, 0) / intensity_full_scale, 1) · 65535)
 // with full scale energy_rel = 1 by default (all transmitted energy back: the physical maximum
 // of SENSOR-SPEC §7 eq 7.13), unknown (NaN) energy → 0; return number / number of returns;
-// classification 2 ground, 5 tree (high vegetation), 14 wire (wire – conductor), 15 pole
-// (transmission tower), 0 (created, never classified) when unknown; no classification flags,
+// classification 2 ground, 5 tree (high vegetation), 6 building, 14 wire (wire – conductor), 15
+// pole (transmission tower), 18 fog (high noise), 7 noise (low noise: a false return, SENSOR-SPEC
+// §11), 0 (created, never classified) when unknown; no classification flags,
 // scanner channel 0, scan direction and edge-of-flight-line 0; user data = fiber (1..127); scan
 // angle = β in 0.006° units, clamped to ±30000; point source ID 0; GPS time = the pulse time on
 // the trajectory's clock in seconds. That is not GPS time (neither week seconds nor adjusted
@@ -166,7 +167,8 @@ class LasWriter final : public PointSink {
 
 // round(min(max(energy_rel, 0) / full_scale, 1) · 65535); NaN → 0.
 [[nodiscard]] std::uint16_t las_intensity(double energy_rel, double full_scale);
-// 2 ground, 5 tree, 14 wire, 15 pole; 0 unknown (ASPRS classes of format 6).
+// 2 ground, 5 tree, 6 building, 14 wire, 15 pole, 18 fog, 7 noise; 0 unknown (ASPRS classes of
+// format 6).
 [[nodiscard]] std::uint8_t las_classification(std::optional<SurfaceClass> surface);
 // round(β / 0.006°) clamped to ±30000 (±180°); NaN → 0.
 [[nodiscard]] std::int16_t las_scan_angle(double scan_angle_deg);

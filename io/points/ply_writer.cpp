@@ -33,6 +33,8 @@ std::uint8_t ply_class(std::optional<SurfaceClass> surface) {
       return 4;
     case SurfaceClass::fog:
       return 5;
+    case SurfaceClass::noise:
+      return kPlyClassNoise;
   }
   return kPlyClassUnknown;
 }

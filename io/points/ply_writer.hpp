@@ -5,7 +5,8 @@
 // One element `vertex` with the properties, in this order, 29 bytes a vertex:
 //   double x, double y, double z  local East-North-Up metres from the scenario origin
 //   float intensity               energy_rel (ξ_rx/ξ_tx, SENSOR-SPEC §7 eq 7.13); NaN if unknown
-//   uchar class                   0 wire, 1 pole, 2 tree, 3 ground, 4 building, 5 fog, 255 unknown
+//   uchar class                   0 wire, 1 pole, 2 tree, 3 ground, 4 building, 5 fog,
+//                                 7 noise (INTERFACE.md: a false return), 255 unknown
 // The vertex count is known only at the end, so the header has a fixed length: the line
 // "element vertex N" is preceded by a comment line padded with spaces to make up for the digits
 // of N (room for any 64-bit count), and finish() rewrites the header in place with the real
@@ -30,6 +31,7 @@ namespace owsim {
 
 inline constexpr std::size_t kPlyVertexBytes = 29;
 inline constexpr std::uint8_t kPlyClassUnknown = 255;
+inline constexpr std::uint8_t kPlyClassNoise = 7;  // INTERFACE.md "PLY class 7", as LAS's low noise
 
 class PlyWriter final : public PointSink {
  public:
@@ -67,7 +69,7 @@ class PlyWriter final : public PointSink {
   std::uint64_t points_written_ = 0;
 };
 
-// The `class` byte: 0 wire, 1 pole, 2 tree, 3 ground, 4 building, 5 fog, 255 unknown.
+// The `class` byte: 0 wire, 1 pole, 2 tree, 3 ground, 4 building, 5 fog, 7 noise, 255 unknown.
 [[nodiscard]] std::uint8_t ply_class(std::optional<SurfaceClass> surface);
 // The whole header (through "end_header\n") for `vertex_count` vertices; its length does not
 // depend on the count.

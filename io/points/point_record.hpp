@@ -18,9 +18,6 @@
 
 namespace owsim {
 
-// object_index of a return that belongs to no scenario object (or to an unknown one).
-inline constexpr std::uint32_t kNoObject = std::numeric_limits<std::uint32_t>::max();
-
 struct PointRecord {
   std::int64_t frame = 0;
   int pulse = 0;                                    // index within the frame, 0-based
@@ -37,7 +34,8 @@ struct PointRecord {
   // (frame_points, geometry/geodesy_cells.hpp); NaN: the LAS writer computes it.
   Eigen::Vector2d grid_m = Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN());
   std::optional<SurfaceClass> surface;     // std::nullopt: unknown
-  std::uint32_t object_index = kNoObject;  // into the writer's object-id table
+  std::uint32_t object_index = kNoObject;  // into the writer's object-id table; kNoObject: none
+                                           // (geometry/scene.hpp: a false return, or unknown)
   double energy_rel = std::numeric_limits<double>::quiet_NaN();     // ξ_rx/ξ_tx; NaN: unknown
   double incidence_deg = std::numeric_limits<double>::quiet_NaN();  // NaN: unknown
   double scan_angle_deg = 0;  // mirror angle β of the pulse (LAS scan angle)

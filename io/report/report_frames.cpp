@@ -11,8 +11,9 @@
 namespace owsim {
 namespace {
 
-// The mark's priority: wire, pole, tree, fog; nothing else is marked.
-int mark_rank(std::uint8_t surface) {
+// The mark's priority: wire, pole, tree, fog, then a false first return (noise); nothing else is
+// marked.
+int mark_rank(std::uint8_t surface, int return_number) {
   switch (static_cast<SurfaceClass>(surface)) {
     case SurfaceClass::wire:
       return 0;
@@ -22,6 +23,8 @@ int mark_rank(std::uint8_t surface) {
       return 2;
     case SurfaceClass::fog:
       return 3;
+    case SurfaceClass::noise:
+      return return_number == 1 ? 4 : 99;
     default:
       return 99;
   }
@@ -84,7 +87,7 @@ ReportFrames report_frames(const ReportPoints& points, const RangeImageLayout& l
       plane[2 * cell] = static_cast<std::uint8_t>(dm & 0xFF);
       plane[2 * cell + 1] = static_cast<std::uint8_t>(dm >> 8);
     }
-    const int r = mark_rank(points.surface[i]);
+    const int r = mark_rank(points.surface[i], points.return_number[i]);
     std::uint8_t& best = rank[static_cast<std::size_t>(slot) * cells + cell];
     if (r < best) {
       best = static_cast<std::uint8_t>(r);

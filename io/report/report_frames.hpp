@@ -5,7 +5,8 @@
 // sweeping up, the even frames, and column lines−1−l on frames sweeping down). A cell holds the
 // first return's range in decimetres (0: no return; 1..65535) and a mark: 1 + the SurfaceClass of
 // the pulse's wire, pole, tree or fog return if any (wire before pole before tree before fog, so a
-// wire behind a nearer tree still shows), 0 otherwise.
+// wire behind a nearer tree still shows), else of its first return if that is a false return
+// (noise, as the quick-look range images colour it), 0 otherwise.
 //
 // A long flight shows at most max_frames frames, evenly spread: frame ⌊i·total/max_frames⌋.
 #include <cstdint>

@@ -24,6 +24,14 @@ enum Column { kFrame, kLine, kFiber, kReturn, kTime, kRange, kE, kN, kU, kClass,
 constexpr std::array<std::string_view, kColumnCount> kColumnNames = {
     "frame", "line", "fiber", "return", "time_s", "range_m", "e_m", "n_m", "u_m", "class"};
 
+// points.ply's class byte (io/points/ply_writer.hpp) as a SurfaceClass code: 0..5 the class's own
+// code, 7 noise (INTERFACE.md "PLY class 7"), anything else unknown.
+std::uint8_t surface_of_ply(std::uint8_t code) {
+  constexpr std::uint8_t kPlyNoise = 7;
+  if (code == kPlyNoise) return static_cast<std::uint8_t>(SurfaceClass::noise);
+  return code < static_cast<std::uint8_t>(SurfaceClass::noise) ? code : kUnknownSurface;
+}
+
 class CsvLineError {
  public:
   CsvLineError(const std::filesystem::path& path, std::uint64_t line)
@@ -212,9 +220,8 @@ ReportPoints read_report_points_ply(const std::filesystem::path& path) {
   for_each_record(in, vertices, kVertexBytes, path, [&](const char* v) {
     std::array<double, 3> xyz{};
     std::memcpy(xyz.data(), v, sizeof xyz);
-    const auto code = static_cast<std::uint8_t>(v[28]);
     points.add(xyz[0], xyz[1], xyz[2], static_cast<float>(kNaN),
-               code < kSurfaceClassCount ? code : kUnknownSurface);
+               surface_of_ply(static_cast<std::uint8_t>(v[28])));
   });
   return points;
 }

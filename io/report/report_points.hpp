@@ -59,14 +59,15 @@ void for_each_record(std::istream& in, std::uint64_t count, std::size_t bytes,
 [[nodiscard]] ReportPoints read_report_points_csv(const std::filesystem::path& path);
 
 // points.ply as owsim writes it (binary little-endian: double x y z, float intensity, uchar
-// class). Throws owsim::Error naming the file for any other layout or a short file.
+// class: owsim's class codes 0..5, 7 noise; others unknown). Throws owsim::Error naming the file
+// for any other layout or a short file.
 [[nodiscard]] ReportPoints read_report_points_ply(const std::filesystem::path& path);
 
 // points.las as owsim writes it (LAS 1.4, point format 6, UTM/UPS with the WKT VLR,
 // io/points/las_writer.hpp): positions through the zone's inverse projection into the local frame
 // of `origin`; without an origin, easting/northing/height minus the file's offsets (a frame of
-// the file's own, not the scenario's). Classes from the ASPRS codes owsim writes (2, 5, 6, 14,
-// 15, 18; others unknown); no range, frame or fiber. Throws owsim::Error naming the file for
+// the file's own, not the scenario's). Classes from the ASPRS codes owsim writes (2, 5, 6, 7 noise,
+// 14, 15, 18; others unknown); no range, frame or fiber. Throws owsim::Error naming the file for
 // another format, a missing or unknown coordinate system, or a short file.
 [[nodiscard]] ReportPoints read_report_points_las(const std::filesystem::path& path,
                                                   const std::optional<Geodetic>& origin);

@@ -30,6 +30,8 @@ std::uint8_t surface_of_asprs(std::uint8_t code) {
       return static_cast<std::uint8_t>(SurfaceClass::tree);
     case 6:
       return static_cast<std::uint8_t>(SurfaceClass::building);
+    case 7:
+      return static_cast<std::uint8_t>(SurfaceClass::noise);
     case 14:
       return static_cast<std::uint8_t>(SurfaceClass::wire);
     case 15:

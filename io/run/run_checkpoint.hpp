@@ -37,8 +37,8 @@ namespace owsim {
 
 inline constexpr std::string_view kRunCheckpointFileName = ".owsim-resume";
 // 3: binary (1, 2: JSON, in .owsim-resume.json); 4: the building and fog classes, returns seen
-// through fog; 5: truth.csv
-inline constexpr int kRunCheckpointVersion = 5;
+// through fog; 5: truth.csv; 6: the noise class (false returns)
+inline constexpr int kRunCheckpointVersion = 6;
 // Where owsim wrote its JSON checkpoints (versions 1 and 2); --resume refuses one left there.
 inline constexpr std::string_view kJsonRunCheckpointFileName = ".owsim-resume.json";
 

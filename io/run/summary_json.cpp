@@ -96,6 +96,13 @@ void append_object(std::string& out, std::string_view id, SurfaceClass surface,
   out += "\n    }";
 }
 
+// The receiver's false returns (class noise, SENSOR-SPEC §11) per pulse fired; 0 with no pulse.
+double false_returns_per_pulse(const FlightSummary& summary) {
+  if (summary.pulses() == 0) return 0.0;
+  return static_cast<double>(summary.returns_of(SurfaceClass::noise)) /
+         static_cast<double>(summary.pulses());
+}
+
 // Everything but the objects: the run facts, the totals and the per-class counts.
 nlohmann::json head_of(const FlightSummary& summary, const Scene& scene,
                        const nlohmann::json& run_facts) {
@@ -108,6 +115,7 @@ nlohmann::json head_of(const FlightSummary& summary, const Scene& scene,
     if (surface == SurfaceClass::fog && scene.fog.empty()) continue;
     head["returns"][std::string(to_string(surface))] = summary.returns_of(surface);
   }
+  head["false_returns_per_pulse"] = false_returns_per_pulse(summary);
   std::array<std::uint64_t, kSurfaceClassCount> objects{};
   std::array<std::uint64_t, kSurfaceClassCount> seen{};
   const auto count = [&](SurfaceClass surface, const ObjectTruth& truth) {

@@ -77,15 +77,21 @@ class ModuleEqualsOwsimRun(unittest.TestCase):
             for column in INTEGERS:
                 np.testing.assert_array_equal(returns[column], rows[column], err_msg=column)
             for column, decimals in DECIMALS.items():
-                # the printed value is the exact one rounded to `decimals`
-                np.testing.assert_array_less(np.abs(returns[column] - rows[column]),
-                                             0.5 * 10.0 ** -decimals * (1 + 1e-6) + 1e-12,
-                                             err_msg=column)
+                # the printed value is the exact one rounded to `decimals`; NaN (a false return's
+                # incidence) is the empty cell
+                unknown = np.isnan(returns[column])
+                np.testing.assert_array_equal(unknown, np.isnan(rows[column]), err_msg=column)
+                np.testing.assert_array_less(
+                    np.abs(returns[column][~unknown] - rows[column][~unknown]),
+                    0.5 * 10.0 ** -decimals * (1 + 1e-6) + 1e-12, err_msg=column)
             np.testing.assert_allclose(returns["energy_rel"], rows["energy_rel"], rtol=5e-9)
             names = np.array(owsim.CLASS_NAMES)[returns["class"]]
             np.testing.assert_array_equal(names, rows["class"])
-            ids = np.array(sim.object_ids)[returns["object"]]
-            np.testing.assert_array_equal(ids, rows["object"])
+            # a false return (class noise) has no object: NO_OBJECT, the empty cell
+            ids = np.array(list(sim.object_ids) + [""])
+            objects = np.where(returns["object"] == owsim.NO_OBJECT, len(ids) - 1,
+                               returns["object"])
+            np.testing.assert_array_equal(ids[objects], rows["object"])
             self.assertEqual(frame.pulses.shape, (PULSES_PER_FRAME,))
             self.assertEqual(frame.rays["dir_enu"].shape, (PULSES_PER_FRAME, 3))
 
@@ -104,6 +110,13 @@ class Module(unittest.TestCase):
         np.testing.assert_allclose(
             np.linalg.norm(self.sim.frame(0).rays["dir_enu"][self.sim.frame(0).pulses["fiber"] != 0],
                            axis=1), 1.0, atol=1e-12)
+
+    def test_class_codes_are_the_c_apis(self):
+        # OWSIM_CLASS_* of capi/owsim/owsim.h: the code is the index; 255 unknown
+        self.assertEqual(owsim.CLASS_NAMES,
+                         ("wire", "pole", "tree", "ground", "building", "fog", "noise"))
+        self.assertEqual(owsim.UNKNOWN_CLASS, 255)
+        self.assertEqual(owsim.NO_OBJECT, 0xFFFFFFFF)
 
     def test_errors(self):
         with self.assertRaises(IndexError) as caught:

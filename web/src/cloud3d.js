@@ -3,7 +3,7 @@
 // (only when the view changes), so a page with millions of points stays idle between moves.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
-import { classRgb, formatNumber, rampRgb } from './colours.js';
+import { CLASS_NAMES, classRgb, css, formatNumber, rampRgb } from './colours.js';
 import { el } from './summary.js';
 
 const WIDTH = 900;
@@ -23,6 +23,13 @@ export function cloudSection(meta, points, step) {
     : `${formatNumber(cloud.shown)} returns.`;
   section.append(el('div', { class: 'controls' }, colourBy, el('label', {}, 'point size ', size), reset),
     el('p', { class: 'caption', id: 'cloud-caption' }, `${shown} Drag to orbit, wheel to zoom, right-drag to pan. Magenta: flight path; white: the scene's wires. Positions to ${formatNumber(Math.max(...step) * 100, 1)} cm.`));
+  // The class colours of the classes the cloud holds (noise: false returns).
+  section.append(el('div', { class: 'legend', id: 'cloud-legend' },
+    ...Object.keys(cloud.by_class ?? {}).map((name) => {
+      const s = el('span', { class: 'swatch' });
+      s.style.background = css(classRgb(CLASS_NAMES.indexOf(name)));
+      return el('span', { class: 'legend-item' }, s, name);
+    })));
   const holder = el('div', { class: 'gl-holder', id: 'cloud-holder' });
   section.append(holder);
 

@@ -1,7 +1,7 @@
 // The page's colours: classes as the quick-look PNGs draw them (io/images/quicklook.hpp), and
 // the range ramp, light = near, dark navy = far.
 
-export const CLASS_NAMES = ['wire', 'pole', 'tree', 'ground', 'building', 'fog'];
+export const CLASS_NAMES = ['wire', 'pole', 'tree', 'ground', 'building', 'fog', 'noise'];
 export const UNKNOWN = 255;
 
 export const CLASS_RGB = {
@@ -11,6 +11,7 @@ export const CLASS_RGB = {
   ground: [120, 136, 170],
   building: [200, 170, 130],
   fog: [200, 200, 255],
+  noise: [255, 230, 0],
   unknown: [170, 170, 170],
 };
 

@@ -1,11 +1,12 @@
 // Section 2: the frame player — each frame's range image as the sensor sees it (rows = fibers by
 // α, highest at the top; columns = lines by mirror angle β, left to right), coloured by the first
-// return's range with wire, pole, tree and fog returns marked, with labelled axes, a colour bar in
-// metres, a legend, a slider and a play button, and the frame's time and pose.
+// return's range with wire, pole, tree and fog returns and false first returns (noise) marked,
+// with labelled axes, a colour bar in metres, a legend, a slider and a play button, and the
+// frame's time and pose.
 import { CLASS_NAMES, classRgb, css, formatNumber, niceStep, rampRgb } from './colours.js';
 import { el } from './summary.js';
 
-const MARKED = ['wire', 'pole', 'tree', 'fog'];
+const MARKED = ['wire', 'pole', 'tree', 'fog', 'noise'];
 const CELL_W = 4;
 const CELL_H = 4;
 const MARGIN = { left: 70, right: 110, top: 30, bottom: 56 };

@@ -6,7 +6,9 @@ import { el } from './summary.js';
 
 const WIDTH = 900;
 const HEIGHT = 640;
-const DRAW_ORDER = [3, 4, 255, 5, 2, 1, 0];  // ground, building, unknown, fog, tree, pole, wire
+// ground, building, unknown, fog, tree, pole, wire; false returns (noise, 6) are no places, as on
+// the quick-look map: not drawn.
+const DRAW_ORDER = [3, 4, 255, 5, 2, 1, 0];
 
 export function mapSection(meta, points, step) {
   const section = el('section', { id: 'map' }, el('h2', {}, 'Map'));
@@ -19,7 +21,7 @@ export function mapSection(meta, points, step) {
   const reset = el('button', { type: 'button', id: 'map-reset' }, 'Reset');
   const cursor = el('span', { id: 'map-cursor', class: 'hover' }, 'E — N — m');
   section.append(el('div', { class: 'controls' }, zoomIn, zoomOut, reset, cursor), canvas,
-    el('p', { class: 'caption' }, 'East right, north up; coordinates in metres east (E) and north (N) of the scenario origin. Wheel or buttons zoom, drag pans.'));
+    el('p', { class: 'caption' }, 'East right, north up; coordinates in metres east (E) and north (N) of the scenario origin; false returns (noise) are not drawn. Wheel or buttons zoom, drag pans.'));
 
   // The extent: returns, flight path and scene objects.
   let e0 = Infinity, e1 = -Infinity, n0 = Infinity, n1 = -Infinity;

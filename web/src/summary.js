@@ -14,6 +14,14 @@ function el(tag, attrs = {}, ...children) {
 }
 export { el };
 
+// The receiver's false returns (class noise, SENSOR-SPEC §11): the count, per pulse and per second
+// of flight.
+function falseReturns(s) {
+  const seconds = s.frames * s.frame_period_s;
+  const perS = seconds > 0 ? `, ${(s.returns.noise / seconds).toPrecision(3)} per second of flight` : '';
+  return `${formatNumber(s.returns.noise)} (${Number(s.false_returns_per_pulse ?? 0).toPrecision(3)} per pulse${perS})`;
+}
+
 function facts(meta) {
   const s = meta.summary;
   const rows = [];
@@ -29,6 +37,7 @@ function facts(meta) {
       .join(' · ');
     add('Returns by class', returns || 'none', 'returns');
     add('Second returns', formatNumber(s.second_returns), 'second_returns');
+    if (s.returns?.noise !== undefined) add('False returns', falseReturns(s), 'false_returns');
     add('Throughput', `${formatNumber(s.pulses_per_s / 1e6, 2)} M pulses/s, ${formatNumber(s.realtime_factor, 1)}× sensor real time`, 'throughput');
     add('Run', `${formatNumber(s.wall_s, 2)} s wall on ${s.threads} thread(s)${s.processes > 1 ? ` × ${s.processes} processes` : ''}, seed ${s.seed}, owsim ${s.version}`, 'run');
   } else {
