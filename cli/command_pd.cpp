@@ -45,6 +45,9 @@ void run_pd(PdCommandOptions& options) {
                pd.criterion.window_s, kDemonstratedProbabilities[p], pd.confidence * 100.0,
                range_text(report.curve.demonstrated_range_m[p]));
   }
+  fmt::print(stderr, "  the sensor's false returns: {} in {} pulses, {:.3g} per second of flight\n",
+             report.false_returns.false_returns, report.false_returns.pulses,
+             report.false_returns.per_s());
 }
 
 }  // namespace

@@ -19,6 +19,7 @@ void add_sweep_command(CLI::App& app, CommandResult& result);
 void add_view_command(CLI::App& app, CommandResult& result);
 void add_pd_command(CLI::App& app, CommandResult& result);
 void add_score_command(CLI::App& app, CommandResult& result);
+void add_roc_command(CLI::App& app, CommandResult& result);
 void add_studio_command(CLI::App& app, CommandResult& result);
 
 }  // namespace owsim::cli

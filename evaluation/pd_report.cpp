@@ -6,8 +6,8 @@
 #include <string_view>
 #include <vector>
 
+#include "evaluation/pd_target.hpp"
 #include "geometry/error.hpp"
-#include "geometry/scene.hpp"
 #include "io/files/atomic_output_file.hpp"
 #include "io/files/csv_cells.hpp"
 #include "io/files/json_text.hpp"
@@ -92,6 +92,9 @@ nlohmann::json pd_json(const PdReport& report, const PdOptions& options) {
       {"trials_detected", report.curve.trials_detected},
       {"windows", windows},
       {"windows_detected", detected},
+      {"pulses", report.false_returns.pulses},
+      {"false_returns", report.false_returns.false_returns},
+      {"false_returns_per_s", report.false_returns.per_s()},
       {"bins",
        {{"lo_m", options.bins.lo_m}, {"hi_m", options.bins.hi_m}, {"step_m", options.bins.step_m}}},
       {"demonstrated_range_m", demonstrated},
@@ -222,37 +225,21 @@ RangeBins parse_range_bins(const std::string& text) {
 
 PdReport write_pd_report(const PdOptions& options) {
   validate(options.criterion, options.bins, options.confidence);
-  if (!options.target_id && !surface_class_from_string(options.target_class)) {
-    throw input_error("--class", "unknown class '" + options.target_class +
-                                     "' (expected wire, pole, tree, building)");
-  }
+  const PdTarget target{options.target_id, options.target_class};
+  validate(target);
   PdReport report;
-  report.target = options.target_id ? *options.target_id : "class:" + options.target_class;
+  report.target = target.name();
   report.directory = options.out ? *options.out : options.folder;
   const std::vector<CampaignFlight> folders = campaign_flights(options.folder);
   report.flights = folders.size();
   // Every flight's tracks are kept until the curve is made: a target's rows are a few per frame.
-  std::vector<std::vector<ObjectTrack>> tracks;
-  std::vector<TargetFlight> flights;
-  std::vector<FlightFacts> facts;
+  std::vector<FlightTracks> tracks;
   for (const CampaignFlight& folder : folders) {
-    facts.push_back(read_flight_facts(folder.directory / "summary.json"));
-    tracks.push_back(read_truth_csv(
-        folder.directory / "truth.csv", [&](std::string_view id, std::string_view object_class) {
-          return options.target_id ? id == *options.target_id
-                                   : object_class == options.target_class;
-        }));
+    tracks.push_back(read_target_tracks(folder, target));
+    report.false_returns += read_false_returns(folder.directory / "summary.json");
   }
-  for (std::size_t f = 0; f < folders.size(); ++f) {
-    for (const ObjectTrack& track : tracks[f]) flights.push_back({track.rows, facts[f]});
-  }
-  if (flights.empty()) {
-    throw input_error(options.target_id ? "--target" : "--class",
-                      "no " +
-                          (options.target_id ? "object '" + *options.target_id + "'"
-                                             : options.target_class + " object") +
-                          " in the ground truth of " + options.folder.string());
-  }
+  require_target_found(target, tracks, options.folder);
+  const std::vector<TargetFlight> flights = target_flights(tracks);
   report.curve =
       detection_probability(flights, options.criterion, options.bins, options.confidence);
 

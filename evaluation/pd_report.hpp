@@ -1,13 +1,15 @@
 #pragma once
 // `owsim pd` (INTERFACE.md "Ground truth and detection evidence"): detection probability versus
 // range over a run or sweep folder's truth.csv files, written as pd.csv, pd.json and pd.svg
-// (curves with their Clopper–Pearson bands). Each file is written under a temporary name and
-// renamed when complete.
+// (curves with their Clopper–Pearson bands); pd.json also gives the sensor's false returns over
+// the flights read (false_returns, pulses, false_returns_per_s: evaluation/false_returns.hpp). Each
+// file is written under a temporary name and renamed when complete.
 #include <filesystem>
 #include <optional>
 #include <string>
 
 #include "evaluation/detection_probability.hpp"
+#include "evaluation/false_returns.hpp"
 
 namespace owsim {
 
@@ -26,6 +28,7 @@ struct PdReport {
   std::filesystem::path directory;
   std::size_t flights = 0;
   PdCurve curve;
+  FalseReturns false_returns;  // the sensor's, summed over the flights' summary.json
 };
 
 // Reads the folder's flights, computes the curve and writes the three files. Throws owsim::Error

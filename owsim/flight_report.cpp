@@ -191,10 +191,11 @@ class PageAssembly {
     meta_["objects_total"] = read.objects_total;
   }
 
-  // owsim pd's and owsim score's files, when they were written into the folder.
+  // owsim pd's, owsim roc's and owsim score's files, when they were written into the folder.
   void add_evidence() {
     const json evidence = report_evidence_json(folder_.directory, options_.max_objects);
     meta_["pd"] = evidence["pd"];
+    meta_["roc"] = evidence["roc"];
     meta_["score"] = evidence["score"];
   }
 

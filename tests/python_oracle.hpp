@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -59,6 +60,16 @@ inline std::string python_list(const std::vector<double>& values) {
   std::string text = "[";
   for (const double value : values) text += python_number(value) + ",";
   return text + "]";
+}
+
+// The numbers a script printed separated by white space, in order (reading stops at the first
+// word that is not a number).
+inline std::vector<double> numbers_printed(const std::string& text) {
+  std::istringstream in(text);
+  std::vector<double> values;
+  double v = 0;
+  while (in >> v) values.push_back(v);
+  return values;
 }
 
 }  // namespace owsim::test

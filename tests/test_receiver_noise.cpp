@@ -6,11 +6,10 @@
 
 #include <cmath>
 #include <numbers>
-#include <sstream>
 #include <vector>
 
-#include "geometry/scene.hpp"
 #include "false_trigger_oracle.hpp"
+#include "geometry/scene.hpp"
 #include "python_oracle.hpp"
 #include "sensor/range_counter.hpp"
 #include "sensor/receiver.hpp"
@@ -39,14 +38,6 @@ ReceiverNoise model(double threshold, double noise_at_1km, SunPosition sun = {},
   return ReceiverNoise(p, sun, threshold, gate_m(), light_mps());
 }
 
-std::vector<double> parse_numbers(const std::string& text) {
-  std::istringstream in(text);
-  std::vector<double> values;
-  double v = 0;
-  while (in >> v) values.push_back(v);
-  return values;
-}
-
 TEST(ReceiverNoise, SigmaGrowsAsTheRangeSquaredAndTheRootOfOnePlusTheBackground) {
   // σ_n(R) = σ_1km (R / 1000 m)² √(1 + b)
   EXPECT_DOUBLE_EQ(noise_sigma(1000.0, 0.0, 4e-4), 4e-4);
@@ -69,13 +60,14 @@ TEST(ReceiverNoise, RiceRateAndTheSpecsPrefactor) {
   // ν = exp(−T²/2σ²) / (2√3 τ_p): 5.7735e7 /s for T = 0 and τ_p = 5 ns.
   EXPECT_NEAR(threshold_crossing_rate_hz(0.0, 1.0, 5e-9), 1.0 / (2.0 * std::sqrt(3.0) * 5e-9),
               1e-3);
-  EXPECT_NEAR(threshold_crossing_rate_hz(4.79, 1.0, 5e-9) / threshold_crossing_rate_hz(0.0, 1.0, 5e-9),
-              std::exp(-4.79 * 4.79 / 2.0), 1e-18);
+  EXPECT_NEAR(
+      threshold_crossing_rate_hz(4.79, 1.0, 5e-9) / threshold_crossing_rate_hz(0.0, 1.0, 5e-9),
+      std::exp(-4.79 * 4.79 / 2.0), 1e-18);
   // "(2/c)/(2√3 τ_p) is 0.385 false triggers per metre per unit of exp(−T²/2σ_n²)"
   const ReceiverNoise zero_threshold = model(0.0, 4e-4);
   EXPECT_NEAR(zero_threshold.intensity_per_m(700.0, 0.0), 0.385, 0.0005);
-  EXPECT_NEAR(zero_threshold.cumulative(1000.0, 0.0), 1000.0 * zero_threshold.intensity_per_m(1.0, 0.0),
-              1e-9);
+  EXPECT_NEAR(zero_threshold.cumulative(1000.0, 0.0),
+              1000.0 * zero_threshold.intensity_per_m(1.0, 0.0), 1e-9);
 }
 
 TEST(ReceiverNoise, TheSpecsSanityNumbersForTheGate) {
@@ -94,12 +86,10 @@ TEST(ReceiverNoise, CumulativeIntensityEqualsScipysQuadratureOfTheRate) {
   struct Case {
     double threshold, noise_at_1km, background, range_m;
   };
-  const std::vector<Case> cases = {{0.005, 0.005 / 7.34, 0.0, gate_m()},
-                                   {0.005, 0.005 / 7.34, 0.0, 900.0},
-                                   {0.0025, 0.005 / 7.34, 0.0, gate_m()},
-                                   {0.003, 0.0004, 0.8, 1100.0},
-                                   {0.003, 0.0004, 0.8, 900.0},
-                                   {0.001, 0.002, 2.0, 600.0}};
+  const std::vector<Case> cases = {
+      {0.005, 0.005 / 7.34, 0.0, gate_m()},  {0.005, 0.005 / 7.34, 0.0, 900.0},
+      {0.0025, 0.005 / 7.34, 0.0, gate_m()}, {0.003, 0.0004, 0.8, 1100.0},
+      {0.003, 0.0004, 0.8, 900.0},           {0.001, 0.002, 2.0, 600.0}};
   std::vector<double> t, s, b, r, mine;
   for (const Case& c : cases) {
     t.push_back(c.threshold);
@@ -111,14 +101,17 @@ TEST(ReceiverNoise, CumulativeIntensityEqualsScipysQuadratureOfTheRate) {
   const std::string out = run_python(
       "import numpy as np\nfrom scipy.integrate import quad\n"
       "c = 299792500.0 / 1.0003\ntau = 5e-9\n"
-      "T = " + python_list(t) + "\nS = " + python_list(s) + "\nB = " + python_list(b) +
+      "T = " +
+      python_list(t) + "\nS = " + python_list(s) + "\nB = " + python_list(b) +
       "\nR = " + python_list(r) +
       "\nfor T_, S_, B_, R_ in zip(T, S, B, R):\n"
       "    sig = lambda x: S_ * (x / 1000.0) ** 2 * np.sqrt(1 + B_)\n"
-      "    lam = lambda x: (2 / c) * np.exp(-T_ ** 2 / (2 * sig(x) ** 2)) / (2 * np.sqrt(3) * tau) if x > 0 else 0.0\n"
-      "    v, err = quad(lam, 0, R_, limit=500, epsabs=0, epsrel=1e-12, points=[R_ * 0.5, R_ * 0.8])\n"
+      "    lam = lambda x: (2 / c) * np.exp(-T_ ** 2 / (2 * sig(x) ** 2)) / (2 * np.sqrt(3) * tau) "
+      "if x > 0 else 0.0\n"
+      "    v, err = quad(lam, 0, R_, limit=500, epsabs=0, epsrel=1e-12, points=[R_ * 0.5, R_ * "
+      "0.8])\n"
       "    print(repr(v))\n");
-  const std::vector<double> oracle = parse_numbers(out);
+  const std::vector<double> oracle = test::numbers_printed(out);
   ASSERT_EQ(oracle.size(), cases.size()) << out;
   for (std::size_t i = 0; i < cases.size(); ++i) {
     EXPECT_NEAR(mine[i], oracle[i], 1e-9 * oracle[i] + 1e-300) << "case " << i;
@@ -144,8 +137,10 @@ TEST(ReceiverNoise, SunlightBackgrounds) {
   SunPosition sun{true, 30.0, 135.0};
   const Eigen::Vector3d to_sun = sun_direction_enu(sun);
   EXPECT_NEAR(to_sun.z(), 0.5, 1e-15);
-  EXPECT_NEAR(to_sun.x(), std::cos(std::numbers::pi / 6) * std::sin(0.75 * std::numbers::pi), 1e-15);
-  EXPECT_NEAR(to_sun.y(), std::cos(std::numbers::pi / 6) * std::cos(0.75 * std::numbers::pi), 1e-15);
+  EXPECT_NEAR(to_sun.x(), std::cos(std::numbers::pi / 6) * std::sin(0.75 * std::numbers::pi),
+              1e-15);
+  EXPECT_NEAR(to_sun.y(), std::cos(std::numbers::pi / 6) * std::cos(0.75 * std::numbers::pi),
+              1e-15);
   // Flat ground seen from above: cos θ_s = sin ε; the normal's orientation does not matter.
   const Eigen::Vector3d down(0.3, 0.0, -1.0);
   EXPECT_NEAR(sunlit_background({0, 0, 1}, down.normalized(), 0.2, to_sun, 2.0), 2.0 * 0.2 * 0.5,
@@ -178,21 +173,22 @@ void expect_poisson_first_triggers(double threshold, double noise_at_1km, double
   std::vector<double> ranges;
   for (int pulse = 0; pulse < kPulses; ++pulse) {
     std::uint32_t draw = 0;
-    const double r = noise.next_false_trigger_m(0.0, background, busy, 11, pulse / 20000,
-                                                pulse % 20000, draw);
+    const double r =
+        noise.next_false_trigger_m(0.0, background, busy, 11, pulse / 20000, pulse % 20000, draw);
     if (r >= 0.0) ranges.push_back(r);
   }
   std::vector<std::pair<double, double>> busy_pairs;
   for (const BusyInterval& b : busy) busy_pairs.emplace_back(b.begin_m, b.end_m);
   const std::string out = run_python(
       test::false_trigger_oracle_python(threshold, noise_at_1km, background, gate_m(), busy_pairs) +
-      "n = " + std::to_string(kPulses) + "\nranges = np.array(" + python_list(ranges) + ")\n"
+      "n = " + std::to_string(kPulses) + "\nranges = np.array(" + python_list(ranges) +
+      ")\n"
       "p = 1 - np.exp(-Lam(gate))\n"
       "z = (len(ranges) - n * p) / np.sqrt(n * p * (1 - p))\n"
       "ks = stats.kstest(ranges, first_cdf(gate))\n"
       "inside = sum(1 for r in ranges if any(a <= r < e for a, e in busy))\n"
       "print(z, ks.pvalue, inside, p)\n");
-  const std::vector<double> v = parse_numbers(out);
+  const std::vector<double> v = test::numbers_printed(out);
   ASSERT_EQ(v.size(), 4u) << out;
   EXPECT_LT(std::abs(v[0]), 5.0) << "triggers " << ranges.size() << " expected " << v[3] * kPulses;
   EXPECT_GT(v[1], 1e-4) << "KS p-value";
@@ -222,19 +218,23 @@ TEST(ReceiverNoise, EchoDetectionsEqualTheSumOfPhi) {
   int detected = 0;
   for (int i = 0; i < 2000; ++i) {
     const double range = 300.0 + 0.35 * i;
-    const double energy = 0.004 + (static_cast<double>(i % 41) - 20.0) * 0.1 * noise.sigma(range, 0.5);
+    const double energy =
+        0.004 + (static_cast<double>(i % 41) - 20.0) * 0.1 * noise.sigma(range, 0.5);
     for (int pulse = 0; pulse < 40; ++pulse) {
-      detected += noise.echo_registers(energy, range, 0.5, 3, 7, pulse, static_cast<std::uint32_t>(i));
+      detected +=
+          noise.echo_registers(energy, range, 0.5, 3, 7, pulse, static_cast<std::uint32_t>(i));
     }
     energies.push_back(energy);
     ranges.push_back(range);
   }
   const std::string out = run_python(
       "import numpy as np\nfrom scipy.stats import norm\n"
-      "e = np.array(" + python_list(energies) + ")\nR = np.array(" + python_list(ranges) + ")\n"
+      "e = np.array(" +
+      python_list(energies) + ")\nR = np.array(" + python_list(ranges) +
+      ")\n"
       "s = 0.003 * (R / 1000.0) ** 2 * np.sqrt(1.5)\npd = norm.cdf((e - 0.004) / s)\n"
       "print(repr(40 * pd.sum()), repr(40 * (pd * (1 - pd)).sum()))\n");
-  const std::vector<double> v = parse_numbers(out);
+  const std::vector<double> v = test::numbers_printed(out);
   ASSERT_EQ(v.size(), 2u) << out;
   expected = v[0];
   variance = v[1];
@@ -286,7 +286,8 @@ TEST(ReceiverNoise, SelectReturnsMergesFalseTriggersWithEchoes) {
   }
   // P(a trigger before 900 m) = 1 − exp(−Λ(900)).
   const double p_before = 1.0 - std::exp(-noise.cumulative(900.0, 0.0));
-  EXPECT_NEAR(with_noise_first / 2000.0, p_before, 5.0 * std::sqrt(p_before * (1 - p_before) / 2000));
+  EXPECT_NEAR(with_noise_first / 2000.0, p_before,
+              5.0 * std::sqrt(p_before * (1 - p_before) / 2000));
   EXPECT_GT(echo_second, 0);
   // The deterministic receiver (no model) is §7's: the wall only.
   Candidate wall{900.0, 0.5, 10.0, 4, static_cast<std::uint8_t>(SurfaceClass::ground)};

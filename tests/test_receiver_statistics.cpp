@@ -9,12 +9,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <sstream>
 #include <string>
 #include <vector>
 
-#include "owsim/simulation.hpp"
 #include "false_trigger_oracle.hpp"
+#include "owsim/simulation.hpp"
 #include "python_oracle.hpp"
 #include "sensor/range_counter.hpp"
 
@@ -25,14 +24,6 @@ using test::python_list;
 using test::python_number;
 using test::run_python;
 
-std::vector<double> numbers_of(const std::string& text) {
-  std::istringstream in(text);
-  std::vector<double> values;
-  double v = 0;
-  while (in >> v) values.push_back(v);
-  return values;
-}
-
 // A flight at 150 m; `sensor` and `scene` are YAML blocks, `sun` a line (or empty).
 std::string scenario(const std::string& sensor, const std::string& scene, const std::string& sun) {
   return "name: statistics\nseed: 9\norigin: {lat: 48.6881, lon: 10.8447, h: 450}\n" + sun +
@@ -40,7 +31,8 @@ std::string scenario(const std::string& sensor, const std::string& scene, const 
          "atmosphere: {transmission: 0.95}\n"
          "trajectory:\n  waypoints:\n    speed_mps: 40\n"
          "    points: [{e: 0, n: 0, u: 150}, {e: 400, n: 0, u: 150}]\n"
-         "scene:\n" + scene;
+         "scene:\n" +
+         scene;
 }
 
 struct Flight {
@@ -68,11 +60,10 @@ Flight fly(const std::string& yaml, int frames) {
 // Empty sky: every return is a false one; checked against Λ by quadrature.
 void expect_sky_false_returns(const std::string& sun_line, double background) {
   constexpr double kThreshold = 0.004, kNoise = 0.0011;
-  const std::string sensor =
-      "  threshold: " + python_number(kThreshold) +
-      "\n  range_noise_sigma_m: 0\n  mount: {pitch_deg: 20}\n"
-      "  receiver: {noise: on, noise_at_1km: " + python_number(kNoise) +
-      ", sun_noise: 3.0, sky_noise: 0.8}\n";
+  const std::string sensor = "  threshold: " + python_number(kThreshold) +
+                             "\n  range_noise_sigma_m: 0\n  mount: {pitch_deg: 20}\n"
+                             "  receiver: {noise: on, noise_at_1km: " +
+                             python_number(kNoise) + ", sun_noise: 3.0, sky_noise: 0.8}\n";
   const Flight flight = fly(scenario(sensor, "  terrain: none\n", sun_line), 3);
   std::vector<double> ranges;
   for (const ReturnRecord* r : flight.first) {
@@ -85,15 +76,15 @@ void expect_sky_false_returns(const std::string& sun_line, double background) {
   const RangeCounterParams counter;
   const double reportable = (counter.timeout_counts - 0.5) * range_per_count_m(counter);
   const std::string out = run_python(
-      test::false_trigger_oracle_python(kThreshold, kNoise, background,
-                                        timeout_range_m(counter)) +
+      test::false_trigger_oracle_python(kThreshold, kNoise, background, timeout_range_m(counter)) +
       "R = " + python_number(reportable) + "\nn = " + std::to_string(flight.active_pulses) +
-      "\nranges = np.array(" + python_list(ranges) + ")\n"
+      "\nranges = np.array(" + python_list(ranges) +
+      ")\n"
       "p = 1 - np.exp(-Lam(R))\n"
       "z = (len(ranges) - n * p) / np.sqrt(n * p * (1 - p))\n"
       "ks = stats.kstest(ranges, first_cdf(R))\n"
       "print(z, ks.pvalue, n * p)\n");
-  const std::vector<double> v = numbers_of(out);
+  const std::vector<double> v = test::numbers_printed(out);
   ASSERT_EQ(v.size(), 3u) << out;
   EXPECT_GT(ranges.size(), 2000u);
   EXPECT_LT(std::abs(v[0]), 5.0) << ranges.size() << " pulses with a false return, expected "
@@ -116,13 +107,14 @@ void expect_ground_detections_are_sum_of_phi(const std::string& sun_line, double
   constexpr double kThreshold = 0.08, kNoise = 0.52;
   const std::string scene = "  terrain: {flat_u: 0, reflectivity: 0.1}\n";
   const std::string mount = "  mount: {pitch_deg: -90}\n  range_noise_sigma_m: 0\n";
-  const Flight plain = fly(
-      scenario(mount + "  threshold: 0\n  receiver: {noise: off}\n", scene, sun_line), 2);
-  const Flight noisy = fly(scenario(mount + "  threshold: " + python_number(kThreshold) +
-                                        "\n  receiver: {noise: on, noise_at_1km: " +
-                                        python_number(kNoise) + ", sun_noise: 5.0}\n",
-                                    scene, sun_line),
-                           2);
+  const Flight plain =
+      fly(scenario(mount + "  threshold: 0\n  receiver: {noise: off}\n", scene, sun_line), 2);
+  const Flight noisy =
+      fly(scenario(mount + "  threshold: " + python_number(kThreshold) +
+                       "\n  receiver: {noise: on, noise_at_1km: " + python_number(kNoise) +
+                       ", sun_noise: 5.0}\n",
+                   scene, sun_line),
+          2);
   std::vector<double> energies, ranges;
   for (const ReturnRecord* r : plain.first) {
     ASSERT_EQ(r->surface, static_cast<std::uint8_t>(SurfaceClass::ground));
@@ -136,11 +128,14 @@ void expect_ground_detections_are_sum_of_phi(const std::string& sun_line, double
   }
   const std::string out = run_python(
       "import numpy as np\nfrom scipy.stats import norm\n"
-      "e = np.array(" + python_list(energies) + ")\nR = np.array(" + python_list(ranges) + ")\n"
-      "s = " + python_number(kNoise) + " * (R / 1000.0) ** 2 * np.sqrt(1 + " +
-      python_number(background) + ")\npd = norm.cdf((e - " + python_number(kThreshold) +
+      "e = np.array(" +
+      python_list(energies) + ")\nR = np.array(" + python_list(ranges) +
+      ")\n"
+      "s = " +
+      python_number(kNoise) + " * (R / 1000.0) ** 2 * np.sqrt(1 + " + python_number(background) +
+      ")\npd = norm.cdf((e - " + python_number(kThreshold) +
       ") / s)\nprint(repr(pd.sum()), repr((pd * (1 - pd)).sum()))\n");
-  const std::vector<double> v = numbers_of(out);
+  const std::vector<double> v = test::numbers_printed(out);
   ASSERT_EQ(v.size(), 2u) << out;
   EXPECT_GT(v[1], 500.0) << "too few pulses near the threshold to test";
   EXPECT_LT(std::abs(static_cast<double>(detected) - v[0]), 5.0 * std::sqrt(v[1]))

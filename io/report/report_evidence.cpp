@@ -56,7 +56,7 @@ nlohmann::json pd_bins(const std::filesystem::path& path) {
 }  // namespace
 
 nlohmann::json report_evidence_json(const std::filesystem::path& folder, std::size_t max_objects) {
-  nlohmann::json evidence = {{"pd", nullptr}, {"score", nullptr}};
+  nlohmann::json evidence = {{"pd", nullptr}, {"roc", nullptr}, {"score", nullptr}};
   std::error_code error;
   if (std::filesystem::is_regular_file(folder / "pd.json", error) &&
       std::filesystem::is_regular_file(folder / "pd.csv", error)) {
@@ -64,6 +64,13 @@ nlohmann::json report_evidence_json(const std::filesystem::path& folder, std::si
     if (!pd.is_object()) throw input_error((folder / "pd.json").string(), "not an object");
     pd["rows"] = pd_bins(folder / "pd.csv");
     evidence["pd"] = std::move(pd);
+  }
+  if (std::filesystem::is_regular_file(folder / "roc.json", error)) {
+    nlohmann::json roc = parse_json(folder / "roc.json", "roc summary");
+    if (!roc.is_object() || !roc.contains("rows") || !roc["rows"].is_array()) {
+      throw input_error((folder / "roc.json").string(), "not an owsim roc summary (no rows)");
+    }
+    evidence["roc"] = std::move(roc);
   }
   if (std::filesystem::is_regular_file(folder / "score.json", error)) {
     nlohmann::json score = parse_json(folder / "score.json", "score");

@@ -1,22 +1,25 @@
 #include "io/sweep/sweep_table.hpp"
 
-#include <nlohmann/json.hpp>
-
 #include <algorithm>
 #include <array>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "geometry/scene.hpp"
 #include "geometry/error.hpp"
+#include "geometry/scene.hpp"
 #include "io/files/atomic_output_file.hpp"
 #include "io/files/csv_cells.hpp"
 #include "io/files/input_file.hpp"
 
 namespace owsim {
 namespace {
+
+constexpr std::uintmax_t kMaxSweepTableBytes = std::uintmax_t{256} << 20;
+// The first two columns after the varied keys (write_sweep_table).
+constexpr std::string_view kCountsStart[] = {"frames", "pulses"};
 
 struct MemberRow {
   std::uint64_t frames = 0;
@@ -43,6 +46,8 @@ MemberRow read_member(const std::filesystem::path& path,
         row.has_fog = returns.contains(name);
         if (!row.has_fog) continue;
       }
+      // A summary from before the receiver's noise (owsim 0.1.0) has no false returns.
+      if (kSurfaceClasses[c] == SurfaceClass::noise && !returns.contains(name)) continue;
       row.returns[c] = returns.at(name).get<std::uint64_t>();
     }
     row.second_returns = summary.at("second_returns").get<std::uint64_t>();
@@ -81,9 +86,13 @@ void write_sweep_table(const SweepSpec& spec, const std::filesystem::path& out) 
     text += ',';
     text += csv_cell(variation.key);
   }
-  text += ",frames,pulses";
+  text += ',';
+  text += kCountsStart[0];
+  text += ',';
+  text += kCountsStart[1];
   // The fog column where some member flew in weather: clear-air tables keep their columns.
-  const bool fog = std::any_of(rows.begin(), rows.end(), [](const MemberRow& r) { return r.has_fog; });
+  const bool fog =
+      std::any_of(rows.begin(), rows.end(), [](const MemberRow& r) { return r.has_fog; });
   for (const SurfaceClass surface : kSurfaceClasses) {
     if (surface == SurfaceClass::fog && !fog) continue;
     text += ",returns_";
@@ -124,6 +133,48 @@ void write_sweep_table(const SweepSpec& spec, const std::filesystem::path& out) 
   AtomicOutputFile file(out / "sweep.csv");
   file.write(text);
   file.commit();
+}
+
+std::vector<std::string> read_sweep_values(const std::filesystem::path& sweep_csv,
+                                           std::string_view key) {
+  const std::string text = read_input_file(sweep_csv, "sweep table", kMaxSweepTableBytes);
+  std::vector<std::string_view> cells;
+  std::size_t column = 0;
+  std::vector<std::string> values;
+  for_each_line(text, [&](std::int64_t line, std::string_view row) {
+    if (line == 1) {
+      split_csv_cells(row, cells);
+      // The counts start at the last "frames,pulses": a varied key may itself be named frames.
+      std::size_t counts = 0;
+      for (std::size_t c = 1; c + 1 < cells.size(); ++c) {
+        if (cells[c] == kCountsStart[0] && cells[c + 1] == kCountsStart[1]) counts = c;
+      }
+      if (cells.empty() || cells.front() != "member" || counts == 0) {
+        throw input_error(sweep_csv.string() + ":1", "not an owsim sweep table");
+      }
+      std::string varied;
+      for (std::size_t c = 1; c < counts; ++c) {
+        const std::string name = csv_cell_text(cells[c]);
+        if (name == key) column = c;
+        varied += (varied.empty() ? "" : ", ") + name;
+      }
+      if (column == 0) {
+        throw input_error(sweep_csv.string() + ": " + std::string(key),
+                          "the sweep does not vary this key (it varies " +
+                              (varied.empty() ? std::string("none") : varied) + ")");
+      }
+      return;
+    }
+    if (row.empty()) return;
+    split_csv_cells(row, cells);
+    if (cells.size() <= column) {
+      throw input_error(sweep_csv.string() + ":" + std::to_string(line),
+                        "no cell for " + std::string(key));
+    }
+    values.push_back(csv_cell_text(cells[column]));
+  });
+  if (column == 0) throw input_error(sweep_csv.string(), "empty: no header");
+  return values;
 }
 
 }  // namespace owsim

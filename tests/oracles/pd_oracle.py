@@ -16,7 +16,8 @@ import os
 import sys
 
 import numpy as np
-from scipy.stats import beta
+
+from evidence_recount import clopper_pearson, target_rows
 
 
 def flights(folder):
@@ -31,13 +32,7 @@ def flights(folder):
 
 def tracks(flight, target):
     """{object id: (frames, ranges, in_view, returns)} of the target's rows."""
-    by_object = {}
-    with open(os.path.join(flight, "truth.csv"), newline="") as f:
-        for row in csv.DictReader(f):
-            wanted = (row["class"] == target[6:]) if target.startswith("class:") else (
-                row["object"] == target)
-            if wanted:
-                by_object.setdefault(row["object"], []).append(row)
+    by_object = target_rows(flight, target)
     out = {}
     for obj, rows in by_object.items():
         out[obj] = (np.array([int(r["frame"]) for r in rows]),
@@ -45,15 +40,6 @@ def tracks(flight, target):
                     np.array([r["in_view"] == "1" for r in rows]),
                     np.array([int(r["returns"]) for r in rows]))
     return out
-
-
-def cp(k, n, confidence):
-    if n == 0:
-        return (math.nan, math.nan)
-    a = 1 - confidence
-    lo = 0.0 if k == 0 else beta.ppf(a / 2, k, n - k + 1)
-    hi = 1.0 if k == n else beta.ppf(1 - a / 2, k + 1, n - k)
-    return (lo, hi)
 
 
 def main():
@@ -115,7 +101,7 @@ def main():
                     raise ValueError(f"bin {b}: {name} is {row[name]}, expected {value}")
             for prefix, k, n_ in (("pd_window", windows_hit[b], windows[b]),
                                   ("pd_cumulative", trials_hit[b], trials[b])):
-                lo_b, hi_b = cp(int(k), int(n_), confidence)
+                lo_b, hi_b = clopper_pearson(int(k), int(n_), confidence)
                 close(row[prefix], k / n_ if n_ else math.nan, prefix, b)
                 close(row[prefix + "_lo"], lo_b, prefix + "_lo", b)
                 close(row[prefix + "_hi"], hi_b, prefix + "_hi", b)

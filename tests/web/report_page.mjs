@@ -3,7 +3,8 @@
 // summary and its sortable ground-truth table, the frame player's slider and play button, the
 // map's zoom and furniture, the 3D view's orbit; screenshots of each panel in SHOT_DIR.
 //   node tests/web/report_page.mjs REPORT.html SHOT_DIR [--expect-frames] [--expect-objects]
-//        [--expect-wires] [--expect-empty] [--expect-evidence] [--max-ready-ms N]
+//        [--expect-wires] [--expect-empty] [--expect-evidence] [--expect-roc VALUES] [--expect-noise]
+//        [--max-ready-ms N]
 // Prints one JSON line of measurements; exits non-zero with the failed checks listed.
 import { createRequire } from 'node:module';
 import { mkdirSync, writeFileSync } from 'node:fs';
@@ -18,6 +19,7 @@ const zlib = require('node:zlib');
 const [reportPath, shotDir, ...flags] = process.argv.slice(2);
 const expectedNote = flags.includes('--expect-note') ? flags[flags.indexOf('--expect-note') + 1] : null;
 const has = (flag) => flags.includes(flag);
+const expectedRocValues = flags.includes('--expect-roc') ? Number(flags[flags.indexOf('--expect-roc') + 1]) : 0;
 const maxReadyMs = flags.includes('--max-ready-ms') ? Number(flags[flags.indexOf('--max-ready-ms') + 1]) : 10000;
 mkdirSync(shotDir, { recursive: true });
 
@@ -142,6 +144,15 @@ if (expectedNote) {
   const notes = await page.locator('#notes').innerText().catch(() => '');
   check(notes.includes(expectedNote), `a note saying "${expectedNote}" (notes: ${notes})`);
 }
+if (has('--expect-noise')) {
+  // False returns (class noise): counted in the summary, in the legends, yellow cells in a frame.
+  const row = await page.locator('#summary tr[data-key="false_returns"]').innerText().catch(() => '');
+  check(/per pulse/.test(row) && /per second of flight/.test(row), `false returns in the summary (${row})`);
+  check(/noise/.test(await page.locator('#frame-legend').innerText()), 'noise in the frame legend');
+  check(/noise/.test(await page.locator('#cloud-legend').innerText()), 'noise in the 3D legend');
+  const noiseFrame = await shoot('#frame-canvas', 'frame-noise');
+  check(pixelStats(noiseFrame, [255, 230, 0]).near > 100, 'a frame shows false returns in yellow');
+}
 const summaryPng = await shoot('#summary', 'summary');
 check(pixelStats(summaryPng).colours > 10, 'summary screenshot not blank');
 
@@ -157,6 +168,13 @@ if (has('--expect-evidence')) {
   check(/wire/.test(byClass) && /%/.test(byClass), `the detector's Pd by class (${byClass})`);
   check(await page.locator('#score-confusion tr').count() >= 2, 'the confusion table');
   check(pixelStats(await shoot('#evidence', 'evidence')).colours > 10, 'evidence screenshot not blank');
+  if (expectedRocValues > 0) {
+    check(await page.locator('#roc-plot circle.roc-point').count() === expectedRocValues,
+      `one ROC point per value (${expectedRocValues})`);
+    check(await page.locator('#roc-table tr').count() === expectedRocValues + 1, 'the ROC table has a row per value');
+    check(/false returns per second/.test(await page.locator('#roc-plot').innerHTML()), 'the ROC axis is named');
+    check(pixelStats(await shoot('#roc', 'roc')).colours > 10, 'ROC screenshot not blank');
+  }
 } else {
   check(await page.locator('#evidence').count() === 0, 'no evidence section without pd or score files');
 }

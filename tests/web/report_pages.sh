@@ -17,14 +17,22 @@ cd "$root"
 page() { node "$root/tests/web/report_page.mjs" "$@"; }
 
 # 1. A simulated run: summary, ground truth, frames with wire marks, map, 3D with the scene, and
-#    the detection evidence of its wires and of the reference detector.
+#    the detection evidence of its wires, of the same flight at two thresholds (owsim roc over a
+#    small sweep, written into the run's folder) and of the reference detector.
 "$owsim" run examples/corridor.yaml --out "$out/corridor" --frames 90 --quiet
 "$owsim" pd "$out/corridor" --class wire --quiet
+mkdir -p "$out/thresholds"
+cp examples/corridor.yaml "$out/thresholds/"
+printf '%s\n' 'base: corridor.yaml' 'count: 4' 'seed: 3' 'outputs: summary,truth' 'vary:' \
+  '  sensor.threshold: {values: [0.003, 0.005]}' '  trajectory.duration_s: {values: [30]}' \
+  '  seed: {member: true}' > "$out/thresholds/sweep.yaml"
+"$owsim" sweep "$out/thresholds/sweep.yaml" --out "$out/thresholds/campaign" --quiet
+"$owsim" roc "$out/thresholds/campaign" --range 400:800 --out "$out/corridor" --quiet
 /usr/bin/python3 examples/detectors/elevated_returns.py "$out/corridor" "$out/corridor_detections.csv"
 "$owsim" score "$out/corridor" --detections "$out/corridor_detections.csv" --quiet
 "$owsim" view "$out/corridor" --scenario examples/corridor.yaml --quiet
 page "$out/corridor/report.html" "$shots/corridor" --expect-frames --expect-objects --expect-wires \
-  --expect-evidence
+  --expect-evidence --expect-roc 2
 
 # 2. Its words decoded without labels, viewed without the scenario: what real data gives.
 "$owsim" decode "$out/corridor/flight.d64" --scenario examples/corridor.yaml --no-labels \
@@ -50,6 +58,15 @@ page "$out/las_only/report.html" "$shots/las_only" --expect-objects \
 "$owsim" view "$out/corridor" --out "$out/thinned.html" --max-points 50000 --max-frames 7 --quiet
 page "$out/thinned.html" "$shots/thinned" --expect-frames --expect-objects --expect-evidence \
   --expect-note "The 3D view shows 50,000 of"
+
+# 5b. A receiver far noisier than the default: false returns (class noise) in the summary, the
+#     legends and the frames.
+sed -e 's/^  returns: first_second$/  returns: first_second\n  receiver: {noise: on, noise_at_1km: 0.0015}/' \
+  -e 's/^name: single_span$/name: noisy_span/' examples/single_span.yaml > "$out/noisy_span.yaml"
+grep -q "noise_at_1km" "$out/noisy_span.yaml" || { echo "FAIL: no receiver key in noisy_span.yaml" >&2; exit 1; }
+"$owsim" run "$out/noisy_span.yaml" --out "$out/noisy" --frames 6 --quiet
+"$owsim" view "$out/noisy" --quiet
+page "$out/noisy/report.html" "$shots/noisy" --expect-frames --expect-objects --expect-noise
 
 # 6. Not an owsim folder: one line, non-zero, nothing written.
 mkdir -p "$out/not_owsim"

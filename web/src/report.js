@@ -17,7 +17,7 @@ async function main() {
     el('h1', {}, `owsim — ${meta.title}`),
     el('p', { class: 'generator' }, `${meta.generator} · ${meta.sensor.model}${meta.scenario_file ? ` · scenario ${meta.scenario_file}` : ''}`),
     el('nav', {}, ...[['summary', 'Summary'], ['frames', 'Frame player'], ['map', 'Map'], ['cloud', '3D view'],
-      ...(meta.pd || meta.score ? [['evidence', 'Detection evidence']] : [])]
+      ...(meta.pd || meta.roc || meta.score ? [['evidence', 'Detection evidence']] : [])]
       .map(([id, label]) => el('a', { href: `#${id}` }, label)))));
   const report = { meta };
   window.owsimReport = report;
