@@ -21,8 +21,16 @@ namespace {
 
 constexpr double kDelta = 0.5994051784464661;  // c·T/(2n), SENSOR-SPEC §1
 
-ReceiverParams noiseless() {
+// §7's deterministic receiver at the spec's example threshold 0.005 (owsim 0.1.0's default).
+ReceiverParams spec_receiver() {
   ReceiverParams p;
+  p.threshold = 0.005;
+  p.noise.on = false;
+  return p;
+}
+
+ReceiverParams noiseless() {
+  ReceiverParams p = spec_receiver();
   p.range_noise_sigma_m = 0.0;
   return p;
 }
@@ -294,7 +302,7 @@ TEST(Receiver, TwentyMillimetreWireIsSeenToTheTimeout) {
 // = 483.83 m for 5 mm, A = 0.4, T = 0.95, 1 mrad, 0.005. The exact strip area is smaller by
 // ≈ (r_w/r_beam)²/6 ≈ 2e-5, so the exact limit lies just short of it.
 TEST(Receiver, FiveMillimetreWireMatchesTheNarrowStripClosedForm) {
-  const ReceiverParams p;
+  const ReceiverParams p = spec_receiver();
   const double closed_form =
       4.0 * 0.0025 * 0.4 * 0.95 / (std::numbers::pi * std::tan(0.0005) * 0.005);
   EXPECT_NEAR(closed_form, 483.831, 1e-3);
@@ -307,7 +315,7 @@ TEST(Receiver, FiveMillimetreWireMatchesTheNarrowStripClosedForm) {
 }
 
 TEST(Receiver, DetectionRangeFollowsThresholdAndAtmosphere) {
-  ReceiverParams p;
+  ReceiverParams p = spec_receiver();
   EXPECT_EQ(max_detection_range_m(0.005, 0.004, p), 0.0);  // A·T below the threshold
   const double clear = max_detection_range_m(0.005, 0.4, p);
   p.atmosphere.visibility_km = 2.0;

@@ -141,6 +141,11 @@ TEST(MediumPath, OpticalDepthIsTheIntegralOverOverlappingVolumes) {
 // for ln(e/0.005)/(2α) ≈ 0.97 m past the entry.
 struct BankAhead {
   BankAhead() : media({volume()}, 0.0154, 7, receiver) {}
+  static ReceiverParams threshold_0_005() {
+    ReceiverParams r;
+    r.threshold = 0.005;
+    return r;
+  }
   static FogVolume volume() {
     FogVolume bank;
     bank.id = "bank";
@@ -149,7 +154,7 @@ struct BankAhead {
     bank.box = Eigen::AlignedBox3d(Eigen::Vector3d(-10, 100, -10), Eigen::Vector3d(10, 104, 10));
     return bank;
   }
-  ReceiverParams receiver;
+  ReceiverParams receiver = threshold_0_005();
   WeatherMedia media;
   PulseRay ray{Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitY()};
   double alpha = fog_extinction_per_m(15.0);
@@ -251,7 +256,8 @@ TEST(MediumPath, TheGroundUnderAFogIsInsideIt) {
 const char* kLayerScenario = R"(name: layer
 seed: 9
 origin: {lat: 48.6881, lon: 10.8447, h: 450.0}
-sensor: {model: milows, mount: {roll_deg: 0, pitch_deg: -25, yaw_deg: 0, lever_arm_m: [0, 0, 0]}}
+sensor: {model: milows, threshold: 0.005,
+         mount: {roll_deg: 0, pitch_deg: -25, yaw_deg: 0, lever_arm_m: [0, 0, 0]}}
 trajectory:
   waypoints:
     speed_mps: 40

@@ -19,6 +19,16 @@
 namespace owsim {
 namespace {
 
+// SENSOR-SPEC §7's deterministic receiver at the spec's example threshold 0.005 (owsim 0.1.0's
+// default): the edges below are those of the energy alone, without §11's noise.
+ReceiverParams spec_receiver() {
+  ReceiverParams p;
+  p.threshold = 0.005;
+  p.noise.on = false;
+  return p;
+}
+
+
 constexpr double kSensorHeight_m = 150.0;
 constexpr double kSpeed_mps = 40.0;
 
@@ -48,7 +58,8 @@ struct WireSighting {
 // placed so the wire is `range_m` ahead at the middle of frame 0.
 WireSighting sight_wire(double range_m, double diameter_m, double speed_mps) {
   const Scene scene = wire_across(range_m, diameter_m);
-  FrameSimulatorParams params;  // MilOWS, default receiver
+  FrameSimulatorParams params;  // MilOWS, SENSOR-SPEC §7's deterministic receiver at 0.005
+  params.receiver = spec_receiver();
   const EmbreeDevice device;
   const EmbreeScene embree(
       device, scene, params.receiver,
@@ -80,7 +91,7 @@ WireSighting sight_wire(double range_m, double diameter_m, double speed_mps) {
 const std::vector<double> kRanges_m = {100, 300, 450, 500, 700, 1000, 1200};
 
 TEST(WireDetection, TwentyMillimetreWireIsSeenUpToTheTimeout) {
-  const ReceiverParams defaults;
+  const ReceiverParams defaults = spec_receiver();
   EXPECT_GE(max_detection_range_m(0.020, 0.4, defaults), timeout_range_m(defaults.counter));
   for (double speed : {0.0, kSpeed_mps}) {
     for (double range : kRanges_m) {
@@ -101,7 +112,7 @@ TEST(WireDetection, TwentyMillimetreWireIsSeenUpToTheTimeout) {
 }
 
 TEST(WireDetection, FiveMillimetreWireOnlyWithinItsMaximumRange) {
-  const ReceiverParams defaults;
+  const ReceiverParams defaults = spec_receiver();
   const double limit = max_detection_range_m(0.005, 0.4, defaults);
   EXPECT_NEAR(limit, 484.0, 2.0);
   for (double speed : {0.0, kSpeed_mps}) {
@@ -122,7 +133,7 @@ TEST(WireDetection, FiveMillimetreWireOnlyWithinItsMaximumRange) {
 // The detection edge found by simulation sits at the computed maximum range: the farthest range
 // (1 m steps) at which a hovering sensor still records the 5 mm wire is within 1 % below it.
 TEST(WireDetection, SimulatedEdgeMatchesMaxDetectionRange) {
-  const ReceiverParams defaults;
+  const ReceiverParams defaults = spec_receiver();
   const double limit = max_detection_range_m(0.005, 0.4, defaults);
   double farthest_seen = 0.0;
   double nearest_unseen = INFINITY;
