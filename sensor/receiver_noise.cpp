@@ -36,6 +36,17 @@ struct GroupMinimum {
   int argmin;
 };
 
+// The group's draw itself. Not inlined: GCC otherwise computes the Philox block on every call and
+// selects it after the cache test (corridor, one thread: 8.6 % of all samples).
+[[gnu::noinline]] GroupMinimum group_minimum(std::uint64_t seed, std::int64_t frame,
+                                             std::int64_t group) {
+  const PhiloxBlock block = random_block({seed, frame, group, RandomPurpose::false_trigger_group});
+  const double u = static_cast<double>((static_cast<std::uint64_t>(block[0]) << 21) ^
+                                       (block[1] >> 11)) *
+                   0x1p-53;  // 53 bits, [0, 1)
+  return GroupMinimum{-std::log1p(-u) / kTriggerGroup, static_cast<int>(block[2] % kTriggerGroup)};
+}
+
 GroupMinimum first_exponentials_minimum(std::uint64_t seed, std::int64_t frame, int pulse) {
   struct Cached {
     std::uint64_t seed;
@@ -46,14 +57,7 @@ GroupMinimum first_exponentials_minimum(std::uint64_t seed, std::int64_t frame, 
   thread_local Cached cached{0, -1, -1, {0.0, 0}};
   const std::int64_t group = pulse / kTriggerGroup;
   if (cached.group != group || cached.frame != frame || cached.seed != seed) {
-    const PhiloxBlock block =
-        random_block({seed, frame, group, RandomPurpose::false_trigger_group});
-    const double u = static_cast<double>((static_cast<std::uint64_t>(block[0]) << 21) ^
-                                         (block[1] >> 11)) *
-                     0x1p-53;  // 53 bits, [0, 1)
-    cached = {seed, frame, group,
-              GroupMinimum{-std::log1p(-u) / kTriggerGroup,
-                           static_cast<int>(block[2] % kTriggerGroup)}};
+    cached = {seed, frame, group, group_minimum(seed, frame, group)};
   }
   return cached.draw;
 }
