@@ -208,7 +208,7 @@ await page.screenshot({ path: join(shotDir, 'studio_span.png') });
 await page.locator('#fly').click();
 await page.waitForSelector('#report-pane:not([hidden])', { timeout: 600000 });
 const frame = page.frameLocator('#report');
-await frame.locator('body[data-ready="1"]').waitFor({ timeout: 60000 });
+await frame.locator('body[data-ready="1"]').waitFor({ timeout: 180000 });
 const facts = await frame.locator('#summary table.facts').innerText();
 wires = Number((/wire ([\d,]+)/.exec(facts)?.[1] ?? '0').replace(/,/g, ''));
 check(wires > 0, `wire returns in the report: ${wires}`);
