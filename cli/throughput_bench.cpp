@@ -217,8 +217,7 @@ ThroughputReport measure_throughput(const ThroughputOptions& options) {
       progress.note("end-to-end", round, options.repeats, rate(end_to_end_best));
     };
     const auto words_and_truth = [&] {
-      truth_s =
-          end_to_end_seconds(simulator, setup, threads, {OutputKind::d64, OutputKind::truth});
+      truth_s = end_to_end_seconds(simulator, setup, threads, {OutputKind::d64, OutputKind::truth});
       truth_best = std::min(truth_best, truth_s);
       progress.note("words and truth", round, options.repeats, rate(truth_best));
     };

@@ -74,8 +74,8 @@ void FrameSimulator::receive_range(FrameResult& out, std::span<const PulseCandid
     }
     const PulseCandidates& met = candidates[static_cast<std::size_t>(k - begin)];
     if (noise_.on()) {  // SENSOR-SPEC §11: every pulse may hold false returns
-      PulseNoise noise{&noise_,
-                       met.has_solid() ? met.solid_background() : noise_.sky_background(), {}};
+      PulseNoise noise{
+          &noise_, met.has_solid() ? met.solid_background() : noise_.sky_background(), {}};
       if (!weather_.empty()) {
         const std::span<Candidate> weathered_met =
             weathered_candidates(weather_, out.rays[index], met, receiver, weathered, &busy);

@@ -86,7 +86,7 @@ class FrameSimulator {
   FrameRayBuilder ray_builder_;
   ReceiverNoise noise_;  // SENSOR-SPEC §11; off: the deterministic receiver
   FrameTracer tracer_;
-  WeatherMedia weather_;  // the scene's fog volumes (SENSOR-SPEC §10); empty in clear air
+  WeatherMedia weather_;           // the scene's fog volumes (SENSOR-SPEC §10); empty in clear air
   std::size_t named_objects_ = 0;  // the scene's named_object_count
   // Each worker's candidates for the block of lines it is tracing (simulate).
   mutable tbb::enumerable_thread_specific<std::vector<PulseCandidates>> block_candidates_;

@@ -49,9 +49,9 @@ void record_solid(const EmbreeScene& scene, const ReceiverNoise& noise, const Pu
   if (geom_id < objects.meshes.size()) {
     const MeshObject& mesh = objects.meshes[geom_id];
     const TriangleHit hit = exact_mesh_hit(mesh.mesh, prim_id, ray.origin_enu_m, ray.dir_enu);
-    out.set_solid(mesh_candidate(ray, hit.t, hit.normal, mesh, mesh_object_index(objects, geom_id),
-                                 receiver),
-                  solid_background(noise, hit.normal, ray, mesh.reflectivity));
+    out.set_solid(
+        mesh_candidate(ray, hit.t, hit.normal, mesh, mesh_object_index(objects, geom_id), receiver),
+        solid_background(noise, hit.normal, ray, mesh.reflectivity));
     return;
   }
   if (geom_id == scene.cylinders_geom_id()) {

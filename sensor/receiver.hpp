@@ -35,7 +35,7 @@ enum class ReturnRule {
 };
 
 struct ReceiverParams {
-  BeamParams beam;           // §7
+  BeamParams beam;  // §7
   // §7 minimum ξ_rx/ξ_tx (key sensor.threshold), calibrated with §11's receiver noise
   // (docs/model.md "Receiver statistics"; owsim 0.1.0's deterministic receiver used 0.005)
   double threshold = 0.0029;

@@ -41,9 +41,9 @@ struct GroupMinimum {
 [[gnu::noinline]] GroupMinimum group_minimum(std::uint64_t seed, std::int64_t frame,
                                              std::int64_t group) {
   const PhiloxBlock block = random_block({seed, frame, group, RandomPurpose::false_trigger_group});
-  const double u = static_cast<double>((static_cast<std::uint64_t>(block[0]) << 21) ^
-                                       (block[1] >> 11)) *
-                   0x1p-53;  // 53 bits, [0, 1)
+  const double u =
+      static_cast<double>((static_cast<std::uint64_t>(block[0]) << 21) ^ (block[1] >> 11)) *
+      0x1p-53;  // 53 bits, [0, 1)
   return GroupMinimum{-std::log1p(-u) / kTriggerGroup, static_cast<int>(block[2] % kTriggerGroup)};
 }
 
@@ -148,8 +148,7 @@ double ReceiverNoise::cumulative(double range_m, double background) const {
   const double x = 0.5 * ratio * ratio;
   if (x > 700.0) return 0.0;  // e^(−x) below every double's resolution of Λ's scale
   const double k_quarter = std::sqrt(threshold_ / s) / std::pow(2.0, 0.25);
-  const double value =
-      range_m * std::exp(-x) - k_quarter * boost::math::tgamma(0.75, x);
+  const double value = range_m * std::exp(-x) - k_quarter * boost::math::tgamma(0.75, x);
   return prefactor_per_m_ * std::max(0.0, value);
 }
 

@@ -51,9 +51,9 @@ struct SunPosition {
                                                 double pulse_width_s);
 // b = k_sun · A · max(0, cos θ_s), θ_s between the surface normal (either orientation: the side
 // the ray meets is used) and the sun  (SENSOR-SPEC §11 sunlight)
-[[nodiscard]] double sunlit_background(const Eigen::Vector3d& normal, const Eigen::Vector3d& ray_dir,
-                                       double reflectivity, const Eigen::Vector3d& to_sun,
-                                       double sun_noise);
+[[nodiscard]] double sunlit_background(const Eigen::Vector3d& normal,
+                                       const Eigen::Vector3d& ray_dir, double reflectivity,
+                                       const Eigen::Vector3d& to_sun, double sun_noise);
 // b = k_sky · max(0, sin ε_sun)  (SENSOR-SPEC §11 sunlight)
 [[nodiscard]] double sky_background(const SunPosition& sun, double sky_noise);
 
@@ -127,9 +127,9 @@ class ReceiverNoise {
   double sky_b_ = 0.0;
   double max_b_ = 0.0;
   Eigen::Vector3d to_sun_ = Eigen::Vector3d::UnitZ();
-  double night_gate_ = 0.0;          // Λ(gate) at b = 0
-  double sky_gate_ = 0.0;            // Λ(gate) at the sky's b
-  double max_gate_ = 0.0;            // Λ(gate) at max_background(): every pulse's bound
+  double night_gate_ = 0.0;  // Λ(gate) at b = 0
+  double sky_gate_ = 0.0;    // Λ(gate) at the sky's b
+  double max_gate_ = 0.0;    // Λ(gate) at max_background(): every pulse's bound
 };
 
 }  // namespace owsim

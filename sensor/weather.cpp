@@ -198,8 +198,8 @@ std::size_t apply_weather(const WeatherMedia& media, const PulseRay& ray, double
 
 std::span<Candidate> weathered_candidates(const WeatherMedia& media, const PulseRay& ray,
                                           const PulseCandidates& met,
-                                          const ReceiverParams& receiver,
-                                          WeatherCandidates& buffer, PathBusyIntervals* busy) {
+                                          const ReceiverParams& receiver, WeatherCandidates& buffer,
+                                          PathBusyIntervals* busy) {
   std::size_t hard = 0;
   if (met.wires().empty()) {
     if (met.has_solid()) buffer[hard++] = met.solid();  // most pulses: no gathering

@@ -122,11 +122,8 @@ struct PathBusyIntervals {
 using WeatherCandidates = std::array<Candidate, PulseCandidates::kMaxWires + 1 + kMaxVolumeRuns>;
 // What the receiver sees of a pulse that met `met` along `ray`: its candidates (gather) through the
 // media up to its solid hit, or the timeout range when it has none  (SENSOR-SPEC §10)
-[[nodiscard]] std::span<Candidate> weathered_candidates(const WeatherMedia& media,
-                                                        const PulseRay& ray,
-                                                        const PulseCandidates& met,
-                                                        const ReceiverParams& receiver,
-                                                        WeatherCandidates& buffer,
-                                                        PathBusyIntervals* busy = nullptr);
+[[nodiscard]] std::span<Candidate> weathered_candidates(
+    const WeatherMedia& media, const PulseRay& ray, const PulseCandidates& met,
+    const ReceiverParams& receiver, WeatherCandidates& buffer, PathBusyIntervals* busy = nullptr);
 
 }  // namespace owsim

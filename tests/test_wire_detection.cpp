@@ -28,7 +28,6 @@ ReceiverParams spec_receiver() {
   return p;
 }
 
-
 constexpr double kSensorHeight_m = 150.0;
 constexpr double kSpeed_mps = 40.0;
 
