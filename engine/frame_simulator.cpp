@@ -73,40 +73,29 @@ void FrameSimulator::receive_range(FrameResult& out, std::span<const PulseCandid
       return;
     }
     const PulseCandidates& met = candidates[static_cast<std::size_t>(k - begin)];
-    if (noise_.on()) {  // SENSOR-SPEC §11: every pulse may hold false returns
-      PulseNoise noise{
-          &noise_, met.has_solid() ? met.solid_background() : noise_.sky_background(), {}};
-      if (!weather_.empty()) {
-        const std::span<Candidate> weathered_met =
-            weathered_candidates(weather_, out.rays[index], met, receiver, weathered, &busy);
-        noise.busy = busy.span();
-        select_returns(weathered_met, receiver, params_.seed, out.frame, k, returns, noise);
-      } else if (met.wires().empty()) {
-        if (met.has_solid()) {
-          select_single_return(met.solid(), receiver, params_.seed, out.frame, k, returns, noise);
-        } else {
-          select_returns({}, receiver, params_.seed, out.frame, k, returns, noise);
-        }
-      } else {
-        select_returns(met.gather(gathered), receiver, params_.seed, out.frame, k, returns, noise);
-      }
-      return;
+    // SENSOR-SPEC §11: with the receiver's noise on every pulse may hold false returns; off, the
+    // default PulseNoise is §7's deterministic receiver.
+    PulseNoise noise;
+    if (noise_.on()) {
+      noise = {&noise_, met.has_solid() ? met.solid_background() : noise_.sky_background(), {}};
     }
     if (!weather_.empty()) {
-      select_returns(weathered_candidates(weather_, out.rays[index], met, receiver, weathered),
-                     receiver, params_.seed, out.frame, k, returns);
+      const std::span<Candidate> weathered_met =
+          weathered_candidates(weather_, out.rays[index], met, receiver, weathered, &busy);
+      noise.busy = busy.span();
+      select_returns(weathered_met, receiver, params_.seed, out.frame, k, returns, noise);
       return;
     }
     // Most pulses meet one surface or none and no wire: no gathering for them.
     if (met.wires().empty()) {
       if (met.has_solid()) {
-        select_single_return(met.solid(), receiver, params_.seed, out.frame, k, returns);
+        select_single_return(met.solid(), receiver, params_.seed, out.frame, k, returns, noise);
       } else {
-        set_no_returns(receiver, returns);
+        select_returns({}, receiver, params_.seed, out.frame, k, returns, noise);
       }
       return;
     }
-    select_returns(met.gather(gathered), receiver, params_.seed, out.frame, k, returns);
+    select_returns(met.gather(gathered), receiver, params_.seed, out.frame, k, returns, noise);
   };
   for (int k = begin; k < end; ++k) {
     const auto index = static_cast<std::size_t>(k);
