@@ -68,7 +68,9 @@ std::string roc_svg(const RocReport& report, const RocOptions& options) {
   }
   const bool zeros = std::any_of(points.begin(), points.end(),
                                  [](const Point& point) { return point.rate <= 0.0; });
-  const auto [decade_lo, decade_hi] = decades(points);
+  const std::pair<int, int> span = decades(points);
+  const int decade_lo = span.first;  // plain names: clang 14 cannot capture structured bindings
+  const int decade_hi = span.second;
   const double plot_w = kWidth - kLeft - kRight;
   const double plot_h = kHeight - kTop - kBottom;
   const double axis_x0 = kLeft + (zeros ? kZeroColumn : 0.0);
