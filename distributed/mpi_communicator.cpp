@@ -1,17 +1,27 @@
-// The job mpirun started, through the table of libowsim_mpi.so (distributed/mpi/mpi_module_abi.hpp).
+// The job mpirun started, through the table of libowsim_mpi.so
+// (distributed/mpi/mpi_module_abi.hpp).
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <cstdlib>
+#include <cstring>
 #include <string>
+#include <utility>
 
 #include "distributed/communicator.hpp"
 #include "distributed/mpi/mpi_module_abi.hpp"
 #include "geometry/error.hpp"
 #include "io/files/optional_module.hpp"
+#include "io/files/output_open.hpp"
 
 namespace owsim {
 namespace {
 
 const owsim_mpi_table& mpi_table() {
-  const OptionalModule& module = OptionalModule::get("mpi", "runs under mpirun (owsim built with MPI)");
+  const OptionalModule& module =
+      OptionalModule::get("mpi", "runs under mpirun (owsim built with MPI)");
   const auto entry = reinterpret_cast<owsim_mpi_module_fn>(module.symbol("owsim_mpi_module"));
   const owsim_mpi_table* table = entry();
   if (table == nullptr || table->abi != OWSIM_MPI_MODULE_ABI) {
@@ -30,14 +40,44 @@ void check(const owsim_mpi_table& mpi, int rc, const char* operation) {
   throw Error(std::string("MPI ") + operation + ": " + text);
 }
 
+// A file opened as open_output_file() allows (never through a link), held open while MPI opens it
+// by name, so that no other file can take its inode number meanwhile.
+class CheckedOutputFile {
+ public:
+  explicit CheckedOutputFile(const std::filesystem::path& path)
+      : path_(path), fd_(open_output_file(path, O_WRONLY, path.string(), "cannot open")) {}
+  ~CheckedOutputFile() { ::close(fd_); }
+  CheckedOutputFile(const CheckedOutputFile&) = delete;
+  CheckedOutputFile& operator=(const CheckedOutputFile&) = delete;
+
+  // Device and inode.
+  [[nodiscard]] std::pair<dev_t, ino_t> identity() const {
+    struct stat status {};
+    if (::fstat(fd_, &status) != 0) {
+      throw file_error(path_.string(), std::string("cannot open: ") + std::strerror(errno));
+    }
+    return {status.st_dev, status.st_ino};
+  }
+
+ private:
+  std::filesystem::path path_;
+  int fd_;
+};
+
 class MpiFile final : public SharedFile {
  public:
+  // MPI-IO opens by name and may follow a link: the name must give one and the same file that
+  // open_output_file() accepts before and after MPI opens it.
   MpiFile(const owsim_mpi_table& mpi, const std::filesystem::path& path) : mpi_(mpi) {
+    const CheckedOutputFile before(path);
     const int rc = mpi_.file_open(path.c_str(), &file_);
     if (rc != 0) {
       char text[512];
       mpi_.error_text(rc, text, sizeof text);
       throw file_error(path.string(), std::string("MPI cannot open: ") + text);
+    }
+    if (CheckedOutputFile(path).identity() != before.identity()) {
+      throw file_error(path.string(), "cannot open: another file was put in its place");
     }
   }
   // Not closed (an error on the way): the process is about to end the job (Communicator::abort).
@@ -46,8 +86,7 @@ class MpiFile final : public SharedFile {
   MpiFile& operator=(const MpiFile&) = delete;
 
   void write_at(std::uint64_t offset, std::span<const unsigned char> bytes) override {
-    check(mpi_, mpi_.file_write_at(file_, offset, bytes.data(), bytes.size()),
-          "write_at");
+    check(mpi_, mpi_.file_write_at(file_, offset, bytes.data(), bytes.size()), "write_at");
   }
   void sync() override { check(mpi_, mpi_.file_sync(file_), "file sync"); }
   void close() override {

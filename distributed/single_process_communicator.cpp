@@ -7,6 +7,7 @@
 
 #include "distributed/communicator.hpp"
 #include "geometry/error.hpp"
+#include "io/files/output_open.hpp"
 
 namespace owsim {
 namespace {
@@ -14,9 +15,7 @@ namespace {
 class LocalFile final : public SharedFile {
  public:
   explicit LocalFile(const std::filesystem::path& path)
-      : path_(path), fd_(::open(path.c_str(), O_WRONLY | O_CLOEXEC)) {
-    if (fd_ < 0) fail("cannot open");
-  }
+      : path_(path), fd_(open_output_file(path, O_WRONLY, path.string(), "cannot open")) {}
   ~LocalFile() override {
     if (fd_ >= 0) ::close(fd_);
   }

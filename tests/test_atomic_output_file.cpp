@@ -1,11 +1,16 @@
 // Protects crash-safe output (DESIGN.md, INTERFACE.md): bytes live under `<final>.partial` until
 // commit() renames them over the final name; without commit() nothing is left behind; every
-// failure throws owsim::Error naming the path.
+// failure throws owsim::Error naming the path. And safe output (issue 45): nothing planted at the
+// temporary's name — a symbolic or hard link, a FIFO, a device, a directory — is written through,
+// resumed from or reopened, and no link is followed where owsim makes a folder of its own.
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -14,6 +19,7 @@
 
 #include "geometry/error.hpp"
 #include "io/files/atomic_output_file.hpp"
+#include "io/files/output_open.hpp"
 #include "test_recording_check_fixture.hpp"
 
 namespace owsim {
@@ -167,20 +173,228 @@ TEST_F(AtomicOutput, UnwritableDirectoryThrowsWithThePath) {
   EXPECT_EQ(WEXITSTATUS(status), 0) << "1: no error naming the path, 2: cannot become nobody";
 }
 
-// A full disk, simulated by pointing the temporary name at /dev/full: the error surfaces on a
-// write or at commit, names the path, and nothing appears under the final name.
-TEST_F(AtomicOutput, DiskFullThrowsWithThePath) {
+// A full disk: the error surfaces on a write or at commit, names the path, and nothing appears
+// under the final name. Simulated with a file size limit (EFBIG) in a child process.
+TEST_F(AtomicOutput, AWriteFailureThrowsWithThePath) {
+  const fs::path final_path = dir_ / "flight.d64";
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    const rlimit limit{64 * 1024, 64 * 1024};
+    if (std::signal(SIGXFSZ, SIG_IGN) == SIG_ERR || ::setrlimit(RLIMIT_FSIZE, &limit) != 0) {
+      ::_exit(2);
+    }
+    const std::string message = error_of([&] {
+      AtomicOutputFile file(final_path, {.sync_on_commit = false});
+      file.write(std::string(1 << 20, 'w'));
+      file.commit();
+    });
+    ::_exit(message.find(final_path.string()) != std::string::npos &&
+                    message.find("File too large") != std::string::npos && !fs::exists(final_path)
+                ? 0
+                : 1);
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0) << "1: no error naming the path, 2: cannot set the limit";
+  EXPECT_FALSE(fs::exists(final_path));
+}
+
+// Issue 45: what sits at `<final>.partial` before owsim writes — planted in a shared output
+// folder — is removed, never written through; the final name becomes a regular file of owsim's
+// bytes.
+class PlantedPartial : public AtomicOutput {
+ protected:
+  void SetUp() override {
+    AtomicOutput::SetUp();
+    outside_ = dir_.parent_path() / (dir_.filename().string() + "_outside");
+    fs::remove_all(outside_);
+    fs::create_directories(outside_);
+    victim_ = outside_ / "victim.txt";
+    std::ofstream(victim_) << "precious";
+  }
+  void TearDown() override {
+    fs::remove_all(outside_);
+    AtomicOutput::TearDown();
+  }
+  // Writes `bytes` to `final_path` through an AtomicOutputFile.
+  static void write_file(const fs::path& final_path, const std::string& bytes) {
+    AtomicOutputFile file(final_path, {.sync_on_commit = false});
+    file.write(bytes);
+    file.commit();
+  }
+  // The final name holds `bytes` as a regular file, no temporary is left, the victim is unchanged.
+  void expect_written(const fs::path& final_path, const std::string& bytes) const {
+    EXPECT_EQ(fs::symlink_status(final_path).type(), fs::file_type::regular);
+    EXPECT_EQ(fs::hard_link_count(final_path), 1u);
+    EXPECT_EQ(content(final_path), bytes);
+    EXPECT_FALSE(fs::exists(fs::symlink_status(AtomicOutputFile::partial_path_for(final_path))));
+    EXPECT_EQ(content(victim_), "precious");
+    EXPECT_EQ(fs::hard_link_count(victim_), 1u);
+  }
+
+  fs::path outside_;
+  fs::path victim_;
+};
+
+TEST_F(PlantedPartial, ASymbolicLinkToAFileOutsideIsNotFollowed) {
+  const fs::path final_path = dir_ / "pd.csv";
+  fs::create_symlink(victim_, AtomicOutputFile::partial_path_for(final_path));
+  write_file(final_path, "owsim's bytes");
+  expect_written(final_path, "owsim's bytes");
+}
+
+TEST_F(PlantedPartial, ADanglingSymbolicLinkCreatesNothingOutside) {
+  const fs::path final_path = dir_ / "report.html";
+  const fs::path target = outside_ / "new.txt";
+  fs::create_symlink(target, AtomicOutputFile::partial_path_for(final_path));
+  write_file(final_path, "<html>");
+  expect_written(final_path, "<html>");
+  EXPECT_FALSE(fs::exists(target));
+}
+
+TEST_F(PlantedPartial, ASymbolicLinkToADeviceIsNotFollowed) {
   if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
   const fs::path final_path = dir_ / "flight.d64";
   fs::create_symlink("/dev/full", AtomicOutputFile::partial_path_for(final_path));
-  const std::string message = error_of([&] {
-    AtomicOutputFile file(final_path, {.sync_on_commit = false});
-    file.write(std::string(1 << 20, 'w'));
-    file.commit();
-  });
-  EXPECT_NE(message.find(final_path.string()), std::string::npos) << message;
-  EXPECT_NE(message.find("No space left on device"), std::string::npos) << message;
+  write_file(final_path, std::string(100'000, 'w'));
+  expect_written(final_path, std::string(100'000, 'w'));
+}
+
+TEST_F(PlantedPartial, AHardLinkToAFileOutsideIsNotWrittenThrough) {
+  const fs::path final_path = dir_ / "scenario.yaml";
+  fs::create_hard_link(victim_, AtomicOutputFile::partial_path_for(final_path));
+  ASSERT_EQ(fs::hard_link_count(victim_), 2u);
+  write_file(final_path, "name: x\n");
+  expect_written(final_path, "name: x\n");
+}
+
+TEST_F(PlantedPartial, AFifoNeitherHangsNorStays) {
+  const fs::path final_path = dir_ / "pd.svg";
+  ASSERT_EQ(::mkfifo(AtomicOutputFile::partial_path_for(final_path).c_str(), 0666), 0);
+  ::alarm(30);  // a write through the FIFO would block forever: fail instead
+  write_file(final_path, "<svg/>");
+  ::alarm(0);
+  expect_written(final_path, "<svg/>");
+}
+
+TEST_F(PlantedPartial, ADirectoryIsRefusedInOneLineAndKept) {
+  const fs::path final_path = dir_ / "roc.json";
+  const fs::path partial = AtomicOutputFile::partial_path_for(final_path);
+  fs::create_directories(partial / "inside");
+  const std::string message = error_of([&] { write_file(final_path, "{}"); });
+  EXPECT_EQ(message,
+            final_path.string() + ": cannot create " + partial.string() + ": it is a directory");
+  EXPECT_TRUE(fs::is_directory(partial / "inside"));
   EXPECT_FALSE(fs::exists(final_path));
+}
+
+TEST_F(PlantedPartial, AnExistingFinalLinkIsReplacedNotFollowed) {
+  const fs::path final_path = dir_ / "summary.json";
+  fs::create_symlink(victim_, final_path);
+  write_file(final_path, "{}");
+  expect_written(final_path, "{}");
+}
+
+// A resume adopts only the regular file an owsim writer left, never what a link names: the
+// victim is neither cut back nor appended to.
+TEST_F(PlantedPartial, AResumeThroughASymbolicLinkIsRefused) {
+  const fs::path final_path = dir_ / "points.csv";
+  const fs::path partial = AtomicOutputFile::partial_path_for(final_path);
+  fs::create_symlink(victim_, partial);
+  const std::string expected = final_path.string() + ": cannot resume from " + partial.string() +
+                               ": it is a symbolic link (not followed)";
+  EXPECT_EQ(error_of([&] { AtomicOutputFile::require_resumable(final_path, 3); }), expected);
+  EXPECT_EQ(error_of([&] {
+              AtomicOutputFile file = AtomicOutputFile::resume(final_path, 3);
+              file.write("XX");
+              file.commit();
+            }),
+            expected);
+  EXPECT_EQ(content(victim_), "precious");
+  EXPECT_EQ(fs::symlink_status(partial).type(), fs::file_type::symlink);
+  EXPECT_FALSE(fs::exists(fs::symlink_status(final_path)));
+}
+
+TEST_F(PlantedPartial, AResumeOfAHardLinkAFifoOrAnotherUsersFileIsRefused) {
+  const fs::path final_path = dir_ / "points.las";
+  const fs::path partial = AtomicOutputFile::partial_path_for(final_path);
+  const auto refusal = [&] {
+    return error_of([&] { (void)AtomicOutputFile::resume(final_path, 3); });
+  };
+  fs::create_hard_link(victim_, partial);
+  EXPECT_EQ(refusal(), final_path.string() + ": cannot resume from " + partial.string() +
+                           ": it has 2 names (hard links), not one");
+  EXPECT_EQ(content(victim_), "precious");
+  fs::remove(partial);
+
+  ASSERT_EQ(::mkfifo(partial.c_str(), 0666), 0);
+  ::alarm(30);
+  EXPECT_EQ(refusal(), final_path.string() + ": cannot resume from " + partial.string() +
+                           ": it is a FIFO, not a regular file");
+  ::alarm(0);
+  fs::remove(partial);
+
+  std::ofstream(partial) << "abcdef";
+  if (::geteuid() == 0) {
+    ASSERT_EQ(::chown(partial.c_str(), 65534, 65534), 0);
+    EXPECT_EQ(refusal(), final_path.string() + ": cannot resume from " + partial.string() +
+                             ": it belongs to another user");
+    ASSERT_EQ(::chown(partial.c_str(), 0, 0), 0);
+  }
+  // The writer's own file resumes: cut to the checkpoint, appended to.
+  AtomicOutputFile file = AtomicOutputFile::resume(final_path, 3, {.sync_on_commit = false});
+  file.write("X");
+  file.commit();
+  EXPECT_EQ(content(final_path), "abcX");
+}
+
+// The other processes of a distributed run reopen the temporary process 0 created by name: only
+// that regular file, never a link put in its place.
+TEST_F(PlantedPartial, ReopeningATemporaryRefusesALink) {
+  const fs::path final_path = dir_ / "flight.d64";
+  AtomicOutputFile file(final_path, {.sync_on_commit = false});
+  file.write("0123");
+  file.flush();
+  const int fd = open_output_file(file.partial_path(), O_WRONLY, "here", "cannot open");
+  ASSERT_GE(fd, 0);
+  EXPECT_EQ(::pwrite(fd, "AB", 2, 4), 2);
+  ::close(fd);
+  file.skip(2);
+  file.commit();
+  EXPECT_EQ(content(final_path), "0123AB");
+
+  const fs::path planted = dir_ / "points.csv.partial";
+  fs::create_symlink(victim_, planted);
+  EXPECT_EQ(error_of([&] { (void)open_output_file(planted, O_WRONLY, "here", "cannot open"); }),
+            "here: cannot open " + planted.string() + ": it is a symbolic link (not followed)");
+  EXPECT_EQ(content(victim_), "precious");
+}
+
+// The folders owsim names inside an output folder are made, or taken when they are folders, but
+// never followed when a link sits at their name.
+TEST_F(PlantedPartial, AnOutputSubfolderIsNeverALink) {
+  make_output_subfolder(dir_ / "quicklook");
+  EXPECT_TRUE(fs::is_directory(fs::symlink_status(dir_ / "quicklook")));
+  make_output_subfolder(dir_ / "quicklook");  // already there: taken
+  make_output_subfolders(dir_, "inputs/1");
+  EXPECT_TRUE(fs::is_directory(fs::symlink_status(dir_ / "inputs/1")));
+
+  fs::create_directory_symlink(outside_, dir_ / "007");
+  EXPECT_EQ(error_of([&] { make_output_subfolder(dir_ / "007"); }),
+            (dir_ / "007").string() +
+                ": cannot create the folder: it is a symbolic link (not "
+                "followed)");
+  fs::create_directory_symlink(outside_, dir_ / "inputs/2");
+  EXPECT_EQ(error_of([&] { make_output_subfolders(dir_, "inputs/2/sub"); }),
+            (dir_ / "inputs/2").string() +
+                ": cannot create the folder: it is a symbolic link (not "
+                "followed)");
+  EXPECT_FALSE(fs::exists(outside_ / "sub"));
+  std::ofstream(dir_ / "plain") << "x";
+  EXPECT_EQ(error_of([&] { make_output_subfolder(dir_ / "plain"); }),
+            (dir_ / "plain").string() + ": cannot create the folder: it is a file");
 }
 
 }  // namespace

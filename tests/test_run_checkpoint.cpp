@@ -376,6 +376,34 @@ TEST_F(FlightOutputsResume, ARefusedResumeLeavesEveryFileAsItWas) {
   EXPECT_EQ(files_under(dir_ / "interrupted"), before);
 }
 
+// Issue 45: a temporary replaced by a hard link to a file elsewhere (one that holds at least the
+// checkpoint's bytes) was adopted, cut back and appended to. Now the resume refuses it and
+// touches neither the file nor the folder.
+TEST_F(FlightOutputsResume, AResumeRefusesAHardLinkPlantedAtATemporary) {
+  kill_after(3);
+  const fs::path csv = dir_ / "interrupted" / "points.csv.partial";
+  const fs::path outside = dir_ / "outside.csv";
+  fs::copy_file(csv, outside);
+  std::ofstream(outside, std::ios::binary | std::ios::app) << "someone else's rows\n";
+  const std::string precious = content(outside);
+  fs::remove(csv);
+  fs::create_hard_link(outside, csv);
+  const auto before = files_under(dir_ / "interrupted");
+  const std::optional<RunCheckpoint> checkpoint =
+      read_run_checkpoint(run_checkpoint_path(dir_ / "interrupted"));
+  ASSERT_TRUE(checkpoint.has_value());
+  try {
+    FlightOutputs outputs(options("interrupted", true), scene_, scan_, local_frame_, &*checkpoint);
+    FAIL() << "resumed from a hard link to a file outside the folder";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(csv.string() + ": it has 2 names (hard links), not one"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(content(outside), precious);
+  EXPECT_EQ(files_under(dir_ / "interrupted"), before);
+}
+
 TEST_F(FlightOutputsResume, ACheckpointChangedInOneDigitIsRefused) {
   // A plausible frame count, so only the checksum can tell: resuming it had given exit 0 and a
   // spliced row in points.csv. frames_done follows the header (20 bytes) and the run's JSON text

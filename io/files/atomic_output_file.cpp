@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "geometry/error.hpp"
+#include "io/files/output_open.hpp"
 
 namespace owsim {
 namespace {
@@ -37,8 +38,14 @@ AtomicOutputFile::AtomicOutputFile(std::filesystem::path final_path, AtomicOutpu
       partial_path_(partial_path_for(final_path_)),
       options_(options) {
   if (final_path_.empty()) throw Error("output file: empty path");
-  file_ = std::fopen(partial_path_.c_str(), "wb");
-  if (file_ == nullptr) fail("cannot create " + partial_path_.string(), errno);
+  const int fd = create_output_file(partial_path_, final_path_.string());
+  file_ = ::fdopen(fd, "wb");
+  if (file_ == nullptr) {
+    const int error_number = errno;
+    ::close(fd);
+    ::unlink(partial_path_.c_str());
+    fail("cannot create " + partial_path_.string(), error_number);
+  }
 }
 
 AtomicOutputFile::AtomicOutputFile(Adopt, std::filesystem::path final_path,
@@ -52,13 +59,15 @@ AtomicOutputFile AtomicOutputFile::resume(std::filesystem::path final_path, std:
                                           AtomicOutputOptions options) {
   AtomicOutputFile file(Adopt{}, std::move(final_path), options);
   if (file.final_path_.empty()) throw Error("output file: empty path");
-  require_resumable(file.final_path_, bytes);
-  errno = 0;
-  file.file_ = std::fopen(file.partial_path_.c_str(), "r+b");
-  if (file.file_ == nullptr) file.fail("cannot resume from " + file.partial_path_.string(), errno);
+  const int fd = open_resumable(file.final_path_, bytes);
   file.resumed_ = true;
-  if (::ftruncate(::fileno(file.file_), static_cast<off_t>(bytes)) != 0 ||
-      ::fseeko(file.file_, 0, SEEK_END) != 0) {
+  if (::ftruncate(fd, static_cast<off_t>(bytes)) != 0 ||
+      (file.file_ = ::fdopen(fd, "r+b")) == nullptr) {
+    const int error_number = errno;
+    ::close(fd);
+    file.fail("cannot resume from " + file.partial_path_.string(), error_number);
+  }
+  if (::fseeko(file.file_, 0, SEEK_END) != 0) {
     file.fail("cannot resume from " + file.partial_path_.string(), errno);
   }
   file.bytes_written_ = bytes;
@@ -68,24 +77,27 @@ AtomicOutputFile AtomicOutputFile::resume(std::filesystem::path final_path, std:
 
 void AtomicOutputFile::require_resumable(const std::filesystem::path& final_path,
                                          std::uint64_t bytes) {
+  ::close(open_resumable(final_path, bytes));
+}
+
+int AtomicOutputFile::open_resumable(const std::filesystem::path& final_path, std::uint64_t bytes) {
   const std::filesystem::path partial = partial_path_for(final_path);
-  std::error_code error;
-  const auto status = std::filesystem::symlink_status(partial, error);
-  if (error || !std::filesystem::is_regular_file(status)) {
+  const int fd = open_output_file(partial, O_RDWR, final_path.string(), "cannot resume from");
+  struct stat status {};
+  if (::fstat(fd, &status) != 0) {
+    const int error_number = errno;
+    ::close(fd);
     throw file_error(final_path.string(),
-                     "cannot resume from " + partial.string() + ": " +
-                         (error ? error.message() : std::string("not a regular file")));
+                     "cannot resume from " + partial.string() + ": " + std::strerror(error_number));
   }
-  const std::uintmax_t size = std::filesystem::file_size(partial, error);
-  if (error) {
-    throw file_error(final_path.string(),
-                     "cannot resume from " + partial.string() + ": " + error.message());
-  }
+  const auto size = static_cast<std::uint64_t>(status.st_size);
   if (size < bytes) {
+    ::close(fd);
     throw file_error(final_path.string(), "cannot resume: " + partial.string() + " holds " +
                                               std::to_string(size) + " bytes, the checkpoint " +
                                               std::to_string(bytes));
   }
+  return fd;
 }
 
 AtomicOutputFile::AtomicOutputFile(AtomicOutputFile&& other) noexcept

@@ -12,6 +12,11 @@
 // A killed process runs no destructor, so its `.partial` survives: resume() adopts it, cut back to
 // the size it had at a checkpoint (flush() had handed those bytes to the kernel, which keeps them
 // when the process dies), and appends from there (`owsim run --resume`).
+//
+// The temporary is never opened through what sits at its name (io/files/output_open.hpp): the
+// constructor removes whatever is there (a symbolic or hard link, a FIFO, a file; a directory is
+// refused) and creates the file new, O_EXCL|O_NOFOLLOW; resume() and the other processes of a
+// distributed run reopen it O_NOFOLLOW and accept only a regular file of this user with one name.
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
@@ -26,11 +31,13 @@ struct AtomicOutputOptions {
 
 class AtomicOutputFile {
  public:
-  // Creates (or truncates) `<final_path>.partial`. The directory must exist.
+  // Creates `<final_path>.partial` new (whatever was at that name is removed first, never
+  // followed). The directory must exist.
   explicit AtomicOutputFile(std::filesystem::path final_path, AtomicOutputOptions options = {});
   // Reopens the `<final_path>.partial` an interrupted writer left, cut to its first `bytes` bytes,
-  // for appending. Throws owsim::Error naming the final path if the temporary is missing or holds
-  // fewer than `bytes` bytes.
+  // for appending. Throws owsim::Error naming the final path if the temporary is missing, holds
+  // fewer than `bytes` bytes, or is not a regular file of this user with one name (a symbolic
+  // link there is not followed).
   // The temporary of a resumed file is never removed by the destructor: a run that fails after
   // resuming leaves it for the next --resume, which cuts it back to the checkpoint again.
   [[nodiscard]] static AtomicOutputFile resume(std::filesystem::path final_path,
@@ -72,6 +79,9 @@ class AtomicOutputFile {
  private:
   struct Adopt {};
   AtomicOutputFile(Adopt, std::filesystem::path final_path, AtomicOutputOptions options);
+  // The temporary of `final_path` opened read-write after resume()'s checks.
+  [[nodiscard]] static int open_resumable(const std::filesystem::path& final_path,
+                                          std::uint64_t bytes);
   [[noreturn]] void fail(std::string_view what, int error_number) const;
   void require_open(std::string_view operation) const;
 

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "geometry/error.hpp"
+#include "io/files/output_open.hpp"
 #include "sensor/fiber_layout.hpp"
 #include "sensor/range_counter.hpp"
 
@@ -177,12 +178,16 @@ Quicklook::Quicklook(std::filesystem::path directory, const Scene& scene, const 
       metres_per_px_(metres_per_px_of(region_, options_.map_size_px)),
       base_(pixels_along(region_.sizes().x(), metres_per_px_, options_.map_size_px),
             pixels_along(region_.sizes().y(), metres_per_px_, options_.map_size_px)) {
+  // The run folder may be the user's link; quicklook/, owsim's name, is never followed.
   std::error_code error;
-  std::filesystem::create_directories(directory_, error);
-  if (error) {
-    throw file_error(directory_.string(),
-                     "cannot create the quick-look directory: " + error.message());
+  if (directory_.has_parent_path()) {
+    std::filesystem::create_directories(directory_.parent_path(), error);
   }
+  if (error) {
+    throw file_error(directory_.parent_path().string(),
+                     "cannot create the output folder: " + error.message());
+  }
+  make_output_subfolder(directory_);
   mask_.assign(static_cast<std::size_t>(base_.width()) * static_cast<std::size_t>(base_.height()),
                0);
   draw_terrain(scene.terrain);

@@ -94,10 +94,11 @@ struct QuicklookCheckpoint {
 
 class Quicklook {
  public:
-  // Creates `directory` if missing and rasterises the scene's terrain and objects into the map of
-  // `map_region` (east = x, north = y, local ENU metres). Throws owsim::Error for an empty or
-  // non-finite region, options outside their ranges, a scan with fewer than 2 fibers or no line,
-  // or a directory that cannot be created.
+  // Creates `directory` if missing (its parent as create_directories does, `directory` itself
+  // never through a link planted at its name: io/files/output_open.hpp) and rasterises the scene's
+  // terrain and objects into the map of `map_region` (east = x, north = y, local ENU metres).
+  // Throws owsim::Error for an empty or non-finite region, options outside their ranges, a scan
+  // with fewer than 2 fibers or no line, or a directory that cannot be created.
   Quicklook(std::filesystem::path directory, const Scene& scene, const ScanParams& scan,
             const Eigen::AlignedBox2d& map_region, QuicklookOptions options = {});
 

@@ -129,10 +129,13 @@ void FlightOutputs::open_outputs(const Scene& scene, const RunCheckpoint* from) 
     }
     return &*(from->*member);
   };
-  // Resuming a checkpoint written by finish(), a file whose temporary is gone was committed.
+  // Resuming a checkpoint written by finish(), a file whose temporary is gone was committed (a
+  // link at the temporary's name, even a dangling one, is there: the resume refuses it).
   const auto committed = [&](const std::filesystem::path& final_path) {
+    std::error_code ignored;
     return from != nullptr && from->finishing &&
-           !std::filesystem::exists(AtomicOutputFile::partial_path_for(final_path)) &&
+           !std::filesystem::exists(std::filesystem::symlink_status(
+               AtomicOutputFile::partial_path_for(final_path), ignored)) &&
            std::filesystem::exists(final_path);
   };
   if (from != nullptr) {

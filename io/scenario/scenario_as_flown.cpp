@@ -1,12 +1,19 @@
 #include "io/scenario/scenario_as_flown.hpp"
 
+#include <fcntl.h>
+#include <unistd.h>
 #include <yaml-cpp/yaml.h>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
+#include <memory>
+#include <vector>
 
 #include "geometry/error.hpp"
 #include "io/files/atomic_output_file.hpp"
 #include "io/files/confined_path.hpp"
+#include "io/files/output_open.hpp"
 
 namespace owsim {
 namespace {
@@ -35,6 +42,25 @@ std::string exact_text(double value) {
   char text[40];
   std::snprintf(text, sizeof text, "%.17g", value);
   return text;
+}
+
+// The file `source` copied to `target` through an AtomicOutputFile.
+void copy_input(const std::filesystem::path& source, const std::filesystem::path& target) {
+  const std::unique_ptr<std::FILE, int (*)(std::FILE*)> in(std::fopen(source.c_str(), "rb"),
+                                                           &std::fclose);
+  const auto cannot = [&](int error_number) {
+    return file_error(target.string(), "cannot copy the scenario's file " + source.string() +
+                                           " into the run folder: " + std::strerror(error_number));
+  };
+  if (!in) throw cannot(errno);
+  AtomicOutputFile out(target);
+  std::vector<char> buffer(std::size_t{1} << 20);
+  std::size_t got = 0;
+  while ((got = std::fread(buffer.data(), 1, buffer.size(), in.get())) > 0) {
+    out.write(buffer.data(), got);
+  }
+  if (std::ferror(in.get()) != 0) throw cannot(EIO);
+  out.commit();
 }
 
 }  // namespace
@@ -92,19 +118,26 @@ FlownScenario scenario_as_flown(std::string_view yaml, const std::filesystem::pa
 void write_input_copies(const std::filesystem::path& folder, const std::vector<InputCopy>& inputs) {
   for (const InputCopy& input : inputs) {
     const std::filesystem::path target = folder / input.target;
+    make_output_subfolders(folder, input.target.parent_path());
+    // A hard link costs nothing; link() makes a new name, never following what is there.
     const std::filesystem::path partial = AtomicOutputFile::partial_path_for(target);
-    std::error_code error;
-    std::filesystem::create_directories(target.parent_path(), error);
-    std::filesystem::remove(partial, error);
-    std::filesystem::create_hard_link(input.source, partial, error);
-    if (error) std::filesystem::copy_file(input.source, partial, error);
-    if (!error) std::filesystem::rename(partial, target, error);
-    if (error) {
-      const std::string reason = error.message();
-      std::filesystem::remove(partial, error);
-      throw FileError(target.string() + ": cannot copy the scenario's file " +
-                      input.source.string() + " into the run folder: " + reason);
+    clear_output_name(partial, target.string());
+    if (::linkat(AT_FDCWD, input.source.c_str(), AT_FDCWD, partial.c_str(), AT_SYMLINK_FOLLOW) ==
+        0) {
+      if (std::rename(partial.c_str(), target.c_str()) != 0) {
+        const int error_number = errno;
+        ::unlink(partial.c_str());
+        throw file_error(target.string(), "cannot rename " + partial.string() +
+                                              " to the final name: " + std::strerror(error_number));
+      }
+      continue;
     }
+    if (errno == EEXIST) {
+      throw file_error(target.string(),
+                       "cannot create " + partial.string() +
+                           ": something was put in its place while owsim created it");
+    }
+    copy_input(input.source, target);
   }
 }
 

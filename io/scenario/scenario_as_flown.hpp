@@ -47,7 +47,9 @@ struct FlownScenario {
                                               const std::vector<InputFile>& input_files);
 
 // Places every copy in `folder` (hard links where the file system allows, else copies; a copy
-// appears under its name only when complete). Throws owsim::FileError naming the file.
+// appears under its name only when complete; the folders inputs/… and the copies' temporaries are
+// never followed through a link: io/files/output_open.hpp). Throws owsim::FileError naming the
+// file.
 void write_input_copies(const std::filesystem::path& folder, const std::vector<InputCopy>& inputs);
 
 }  // namespace owsim
