@@ -27,7 +27,11 @@ struct DetectionCriterion {
   double window_s = 1.0;
 };
 
-// Bins [lo, lo + step), …, up to hi (the last bin ends at hi, possibly narrower).
+// Bins [lo, lo + step), …, up to hi (the last bin ends at hi, possibly narrower). validate()
+// bounds them: 0 ≤ lo < hi ≤ kMaxRangeM, kMinBinStepM ≤ step ≤ hi − lo (truth.csv holds ranges to
+// the millimetre) and at most kMaxBins bins.
+inline constexpr double kMinBinStepM = 0.001;
+inline constexpr std::size_t kMaxBins = 100'000;
 struct RangeBins {
   double lo_m = 0.0;
   double hi_m = 1300.0;
@@ -86,11 +90,13 @@ void add_trials(std::span<const Trial> trials, std::vector<PdBin>& bins);
 // Sets every bin's intervals from its counts.
 void set_intervals(std::vector<PdBin>& bins, double confidence);
 
-// The window length in frames: max(1, ⌊W / frame period⌋).
+// The window length in frames: max(1, ⌊W / frame period⌋), at most kMaxFrames + 1 (a window no
+// flight holds).
 [[nodiscard]] std::int64_t window_frames(double window_s, double frame_period_s);
 
-// The curve over `flights` (every flight of every pooled target). Throws owsim::Error for a
-// criterion or bins out of range.
+// The curve over `flights` (every flight of every pooled target; each flight's rows in strictly
+// increasing frame order, as read_truth_csv keeps them), in time and memory by the rows and the
+// bins, whatever the frames. Throws owsim::Error for a criterion or bins out of range.
 [[nodiscard]] PdCurve detection_probability(std::span<const TargetFlight> flights,
                                             const DetectionCriterion& criterion,
                                             const RangeBins& bins, double confidence);

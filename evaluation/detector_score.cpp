@@ -48,13 +48,12 @@ FlightScore score_flight(const CampaignFlight& flight, const std::filesystem::pa
   const Trajectory trajectory = load_trajectory(scenario, frame);
   const ObjectGrid grid(scene);
   const FlightFacts facts = read_flight_facts(flight.directory / "summary.json");
-  const std::vector<ObjectTrack> tracks = read_truth_csv(
-      flight.directory / "truth.csv", [](std::string_view, std::string_view) { return true; });
-  const std::vector<Detection> found = read_detections_csv(detections, frame);
+  const std::vector<ObjectTrack> tracks =
+      read_truth_csv(flight.directory / "truth.csv", facts,
+                     [](std::string_view, std::string_view) { return true; });
 
   FlightScore score;
   score.hours = facts.flight_s() / 3600.0;
-  score.detections = found.size();
   // The objects by index, in scene order.
   const std::size_t count = named_object_count(scene);
   std::unordered_map<std::string, std::uint32_t> index_of;
@@ -63,7 +62,10 @@ FlightScore score_flight(const CampaignFlight& flight, const std::filesystem::pa
   }
   std::vector<std::optional<double>> first_hit_s(count);
   std::vector<std::uint32_t> candidates;
-  for (const Detection& detection : found) {
+  const DetectionFlight flown{frame, scenario.scan.start_s,
+                              scenario.scan.start_s + facts.flight_s()};
+  read_detections_csv(detections, flown, [&](const Detection& detection) {
+    ++score.detections;
     candidates.clear();
     grid.objects_near(detection.enu_m.x(), detection.enu_m.y(), options.gate_m, candidates);
     std::optional<std::uint32_t> hit;
@@ -101,7 +103,7 @@ FlightScore score_flight(const CampaignFlight& flight, const std::filesystem::pa
       rows += ",,";
     }
     rows += '\n';
-  }
+  });
 
   // Every object the truth names (within range at some frame), and any other one detected.
   std::vector<bool> listed(count, false);

@@ -8,7 +8,6 @@
 
 #include "evaluation/pd_target.hpp"
 #include "geometry/error.hpp"
-#include "io/files/atomic_output_file.hpp"
 #include "io/files/csv_cells.hpp"
 #include "io/files/json_text.hpp"
 #include "owsim/version.hpp"
@@ -20,12 +19,6 @@ constexpr std::string_view kPdCsvHeader =
     "target,range_lo_m,range_hi_m,windows,windows_detected,pd_window,pd_window_lo,pd_window_hi,"
     "trials,trials_detected,pd_cumulative,pd_cumulative_lo,pd_cumulative_hi";
 constexpr int kProportionDecimals = 12;
-
-void write_file(const std::filesystem::path& path, std::string_view text) {
-  AtomicOutputFile file(path);
-  file.write(text);
-  file.commit();
-}
 
 void append_proportion(std::string& out, std::uint64_t hits, std::uint64_t count,
                        const ProportionInterval& interval) {
@@ -223,38 +216,35 @@ RangeBins parse_range_bins(const std::string& text) {
   return bins;
 }
 
+PdReport pd_report_of(std::span<const FlightTracks> flights, const PdOptions& options) {
+  PdReport report;
+  report.target = PdTarget{options.target_id, options.target_class}.name();
+  report.flights = flights.size();
+  for (const FlightTracks& flight : flights) report.false_returns += false_returns_of(flight.facts);
+  report.curve = detection_probability(target_flights(flights), options.criterion, options.bins,
+                                       options.confidence);
+  return report;
+}
+
+std::vector<ReportFile> pd_report_files(const PdReport& report, const PdOptions& options) {
+  return {{"pd.csv", pd_csv(report.target, report.curve)},
+          {"pd.json", json_text(pd_json(report, options), 2) + "\n"},
+          {"pd.svg", pd_svg(report, options)}};
+}
+
 PdReport write_pd_report(const PdOptions& options) {
   validate(options.criterion, options.bins, options.confidence);
   const PdTarget target{options.target_id, options.target_class};
   validate(target);
-  PdReport report;
-  report.target = target.name();
-  report.directory = options.out ? *options.out : options.folder;
-  const std::vector<CampaignFlight> folders = campaign_flights(options.folder);
-  report.flights = folders.size();
   // Every flight's tracks are kept until the curve is made: a target's rows are a few per frame.
   std::vector<FlightTracks> tracks;
-  for (const CampaignFlight& folder : folders) {
+  for (const CampaignFlight& folder : campaign_flights(options.folder)) {
     tracks.push_back(read_target_tracks(folder, target));
-    report.false_returns += read_false_returns(folder.directory / "summary.json");
   }
   require_target_found(target, tracks, options.folder);
-  const std::vector<TargetFlight> flights = target_flights(tracks);
-  report.curve =
-      detection_probability(flights, options.criterion, options.bins, options.confidence);
-
-  std::error_code error;
-  std::filesystem::create_directories(report.directory, error);
-  if (error) {
-    throw file_error(report.directory.string(),
-                     "cannot create the output folder: " + error.message());
-  }
-  const std::string csv = pd_csv(report.target, report.curve);
-  const std::string json = json_text(pd_json(report, options), 2) + "\n";
-  const std::string svg = pd_svg(report, options);
-  write_file(report.directory / "pd.csv", csv);
-  write_file(report.directory / "pd.json", json);
-  write_file(report.directory / "pd.svg", svg);
+  PdReport report = pd_report_of(tracks, options);
+  report.directory = options.out ? *options.out : options.folder;
+  write_report_files(report.directory, pd_report_files(report, options));
   return report;
 }
 

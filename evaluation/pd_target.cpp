@@ -21,11 +21,13 @@ void validate(const PdTarget& target) {
 }
 
 FlightTracks read_target_tracks(const CampaignFlight& flight, const PdTarget& target) {
-  return {read_flight_facts(flight.directory / "summary.json"),
-          read_truth_csv(flight.directory / "truth.csv",
-                         [&](std::string_view id, std::string_view object_class) {
-                           return target.matches(id, object_class);
-                         })};
+  FlightTracks tracks;
+  tracks.facts = read_flight_facts(flight.directory / "summary.json");
+  tracks.tracks = read_truth_csv(flight.directory / "truth.csv", tracks.facts,
+                                 [&](std::string_view id, std::string_view object_class) {
+                                   return target.matches(id, object_class);
+                                 });
+  return tracks;
 }
 
 std::vector<TargetFlight> target_flights(std::span<const FlightTracks> flights) {

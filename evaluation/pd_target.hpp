@@ -30,7 +30,7 @@ struct FlightTracks {
   std::vector<ObjectTrack> tracks;
 };
 
-// The flight's summary.json facts and truth.csv rows of the target.
+// The flight's summary.json facts and truth.csv rows of the target (each file checked whole).
 [[nodiscard]] FlightTracks read_target_tracks(const CampaignFlight& flight, const PdTarget& target);
 
 // Every track of `flights`, each with its flight's facts; the rows stay in `flights`.

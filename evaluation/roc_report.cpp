@@ -9,7 +9,7 @@
 
 #include "evaluation/roc_figure.hpp"
 #include "geometry/error.hpp"
-#include "io/files/atomic_output_file.hpp"
+#include "geometry/number_text.hpp"
 #include "io/files/csv_cells.hpp"
 #include "io/files/json_text.hpp"
 #include "io/sweep/sweep_table.hpp"
@@ -36,7 +36,6 @@ std::optional<double> number_of(std::string_view text) {
 
 // One row per distinct value: numbers pool by value, other text by spelling.
 std::vector<RocRow> roc_rows(std::span<const FlightTracks> flights,
-                             std::span<const FalseReturns> false_returns,
                              std::span<const std::string> values, const RocOptions& options) {
   std::vector<std::optional<double>> numbers;
   for (const std::string& value : values) numbers.push_back(number_of(value));
@@ -64,7 +63,7 @@ std::vector<RocRow> roc_rows(std::span<const FlightTracks> flights,
     for (const std::size_t m : members_of[r]) {
       const std::vector<TargetFlight> member = target_flights(flights.subspan(m, 1));
       pooled.insert(pooled.end(), member.begin(), member.end());
-      row.false_returns += false_returns[m];
+      row.false_returns += false_returns_of(flights[m].facts);
     }
     row.members = members_of[r].size();
     const PdCurve curve = detection_probability(pooled, options.criterion, bin, options.confidence);
@@ -156,13 +155,33 @@ void parse_roc_range(const std::string& text, RocOptions& options) {
   options.range_hi_m = hi;
 }
 
+RocReport roc_report_of(std::span<const FlightTracks> members, std::span<const std::string> values,
+                        const RocOptions& options) {
+  if (values.size() != members.size()) {
+    throw Error("roc: " + std::to_string(values.size()) + " values for " +
+                std::to_string(members.size()) + " members");
+  }
+  RocReport report;
+  report.target = options.target.name();
+  report.flights = members.size();
+  report.rows = roc_rows(members, values, options);
+  return report;
+}
+
+std::vector<ReportFile> roc_report_files(const RocReport& report, const RocOptions& options) {
+  return {{"roc.csv", roc_csv(report)},
+          {"roc.json", json_text(roc_json(report, options), 2) + "\n"},
+          {"roc.svg", roc_svg(report, options)}};
+}
+
 RocReport write_roc_report(const RocOptions& options) {
   if (!(std::isfinite(options.range_lo_m) && std::isfinite(options.range_hi_m) &&
-        options.range_lo_m >= 0.0 && options.range_hi_m > options.range_lo_m)) {
-    char text[96];
-    std::snprintf(text, sizeof text, "expected 0 ≤ LO < HI, got %g:%g", options.range_lo_m,
-                  options.range_hi_m);
-    throw input_error("--range", text);
+        options.range_lo_m >= 0.0 && options.range_hi_m <= kMaxRangeM &&
+        options.range_hi_m - options.range_lo_m >= kMinBinStepM)) {
+    throw input_error("--range", "expected 0 ≤ LO < HI ≤ " + number_text(kMaxRangeM, 15) +
+                                     " m with HI − LO ≥ " + number_text(kMinBinStepM) + " m, got " +
+                                     number_text(options.range_lo_m) + ":" +
+                                     number_text(options.range_hi_m));
   }
   validate(options.criterion,
            {options.range_lo_m, options.range_hi_m, options.range_hi_m - options.range_lo_m},
@@ -181,34 +200,14 @@ RocReport write_roc_report(const RocOptions& options) {
     throw input_error(table.string(), "changed while it was read");
   }
   std::vector<FlightTracks> flights;
-  std::vector<FalseReturns> false_returns;
   for (const CampaignFlight& member : members) {
     flights.push_back(read_target_tracks(member, options.target));
-    false_returns.push_back(read_false_returns(member.directory / "summary.json"));
   }
   require_target_found(options.target, flights, options.folder);
 
-  RocReport report;
-  report.target = options.target.name();
+  RocReport report = roc_report_of(flights, values, options);
   report.directory = options.out ? *options.out : options.folder;
-  report.flights = members.size();
-  report.rows = roc_rows(flights, false_returns, values, options);
-
-  std::filesystem::create_directories(report.directory, error);
-  if (error) {
-    throw file_error(report.directory.string(),
-                     "cannot create the output folder: " + error.message());
-  }
-  // All three written before any is renamed: a failure leaves none of them new.
-  AtomicOutputFile csv(report.directory / "roc.csv");
-  AtomicOutputFile json(report.directory / "roc.json");
-  AtomicOutputFile svg(report.directory / "roc.svg");
-  csv.write(roc_csv(report));
-  json.write(json_text(roc_json(report, options), 2) + "\n");
-  svg.write(roc_svg(report, options));
-  csv.commit();
-  json.commit();
-  svg.commit();
+  write_report_files(report.directory, roc_report_files(report, options));
   return report;
 }
 

@@ -3,17 +3,19 @@
 // sweep folder whose members differ in one key (default sensor.threshold), per value of the key,
 // Pd within W of the target in one range bin [LO, HI) — its windows counted exactly as `owsim pd`
 // counts them (detection_probability) — with its Clopper–Pearson interval, against the sensor's
-// false returns per second (false_returns.hpp). Written as roc.csv, roc.json and roc.svg, each
-// under a temporary name and renamed when complete, after every input has been read.
+// false returns per second (false_returns.hpp). Written as roc.csv, roc.json and roc.svg, rendered
+// in memory after every input has been read and replaced together (report_files.hpp).
 #include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "evaluation/detection_probability.hpp"
 #include "evaluation/false_returns.hpp"
 #include "evaluation/pd_target.hpp"
+#include "evaluation/report_files.hpp"
 
 namespace owsim {
 
@@ -50,8 +52,18 @@ struct RocReport {
 // file, line, key or option for bad input (nothing is written then).
 [[nodiscard]] RocReport write_roc_report(const RocOptions& options);
 
+// The report over the members already read (read_target_tracks, evaluation/pd_target.hpp), with
+// `values[m]` member m's value of the key; `directory` left empty.
+[[nodiscard]] RocReport roc_report_of(std::span<const FlightTracks> members,
+                                      std::span<const std::string> values,
+                                      const RocOptions& options);
+
+// roc.csv, roc.json and roc.svg of `report`, as text.
+[[nodiscard]] std::vector<ReportFile> roc_report_files(const RocReport& report,
+                                                       const RocOptions& options);
+
 // "LO:HI" (metres) → options.range_lo_m, range_hi_m; owsim::Error naming --range when it is not
-// two numbers (write_roc_report checks 0 ≤ LO < HI).
+// two numbers (write_roc_report checks 0 ≤ LO < HI ≤ kMaxRangeM and HI − LO ≥ kMinBinStepM).
 void parse_roc_range(const std::string& text, RocOptions& options);
 
 }  // namespace owsim

@@ -7,8 +7,8 @@
 #include "geometry/error.hpp"
 #include "io/report/flight_folder.hpp"
 #include "io/report/report_cloud.hpp"
-#include "io/report/report_frames.hpp"
 #include "io/report/report_evidence.hpp"
+#include "io/report/report_frames.hpp"
 #include "io/report/report_page.hpp"
 #include "io/report/report_points.hpp"
 #include "io/report/report_scene.hpp"
@@ -68,8 +68,9 @@ json frames_json(const ReportFrames& frames, const RangeImageLayout& layout,
       pose.push_back({row.e_m, row.n_m, row.u_m, row.roll_deg, row.pitch_deg, row.heading_deg});
       continue;
     }
-    const double t = f < points.frame_first_time_s.size() ? points.frame_first_time_s[f] : NAN;
-    time_s.push_back(std::isfinite(t) ? json(t) : json(nullptr));
+    const auto first = points.frame_first_time_s.find(static_cast<std::int32_t>(frame));
+    time_s.push_back(first != points.frame_first_time_s.end() ? json(first->second)
+                                                              : json(nullptr));
     pose.push_back(nullptr);
   }
   json alpha = json::array();
@@ -185,6 +186,10 @@ class PageAssembly {
     const auto frames = read.facts.find("frames");
     if (frames != read.facts.end() && frames->is_number_integer()) {
       frames_hint_ = frames->get<std::int64_t>();
+      if (frames_hint_ < 0 || frames_hint_ > kMaxReportFrames) {
+        throw input_error(folder_.summary_json->string() + ": frames",
+                          frames->dump() + " is outside 0..2e9");
+      }
     }
     meta_["summary"] = std::move(read.facts);
     meta_["objects"] = std::move(read.objects);

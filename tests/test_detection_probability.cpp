@@ -1,12 +1,15 @@
 // Protects the detection statistics (evaluation/clopper_pearson.hpp, detection_probability.hpp):
 // Clopper–Pearson bounds pinned to closed forms and published values, the windows needed without a
 // miss (736 for 99.5 % at 95 %), and windows, trials, bins and demonstrated ranges counted by hand
-// on small tracks.
+// on small tracks; windows summed over the rows, not over the frames they name (a track whose
+// frames lie 10¹² apart); --bins refused in one line unless finite, 0 ≤ LO < HI ≤ 1000 km,
+// 1 mm ≤ STEP ≤ HI − LO and at most 10⁵ bins (issue 45: 0:1300:1e308 crashed).
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "evaluation/detection_probability.hpp"
+#include "evaluation/pd_report.hpp"
 #include "geometry/error.hpp"
 
 namespace owsim {
@@ -135,6 +138,89 @@ TEST(DetectionProbability, BadCriteriaAreRefusedNamingTheOption) {
   EXPECT_EQ(message({1, 1.0}, {100, 50, 10}, 0.95).rfind("--bins", 0), 0u);
   EXPECT_EQ(message({1, 1.0}, {}, 1.5).rfind("--confidence", 0), 0u);
   EXPECT_TRUE(message({1, 1.0}, {}, 0.95).empty());
+}
+
+TEST(DetectionProbability, WindowsSumTheRowsWhateverFramesTheyName) {
+  // 10¹² frames of 1 µs: a 1 s window is 10⁶ frames. A vector by frame would take 8 TB.
+  const FlightFacts flight{1'000'000'000'000, 1e-6};
+  const auto row = [](std::int64_t frame, double range_m, std::uint64_t returns) {
+    TruthEntry entry;
+    entry.frame = frame;
+    entry.range_m = range_m;
+    entry.in_view = true;
+    entry.returns = returns;
+    return entry;
+  };
+  const std::vector<TruthEntry> rows = {
+      row(0, 950.0, 0),                // its window reaches the next row's return: detected
+      row(999'999, 850.0, 1),          // its own return: detected
+      row(1'000'000, 810.0, 0),        // none from here to 2·10⁶: missed
+      row(500'000'000'000, 750.0, 0),  // missed
+      row(999'999'000'000, 650.0, 3),  // its window ends at the flight's end: detected
+      row(999'999'999'999, 550.0, 5),  // its window does not fit: no window
+  };
+  const TargetFlight flights[] = {{rows, flight}};
+  const PdCurve curve = detection_probability(flights, {1, 1.0}, {500.0, 1000.0, 100.0}, 0.95);
+  ASSERT_EQ(curve.bins.size(), 5u);
+  const std::uint64_t windows[5] = {0, 1, 1, 2, 1};
+  const std::uint64_t detected[5] = {0, 1, 0, 1, 1};
+  for (std::size_t b = 0; b < 5; ++b) {
+    EXPECT_EQ(curve.bins[b].windows, windows[b]) << b;
+    EXPECT_EQ(curve.bins[b].windows_detected, detected[b]) << b;
+    // One trial, in view out to 950 m and detected there.
+    EXPECT_EQ(curve.bins[b].trials, 1u) << b;
+    EXPECT_EQ(curve.bins[b].trials_detected, 1u) << b;
+  }
+  // The last window that fits holds the returns of the last row too: 3 + 5.
+  const PdCurve eight = detection_probability(flights, {8, 1.0}, {500.0, 1000.0, 100.0}, 0.95);
+  EXPECT_EQ(eight.bins[1].windows_detected, 1u);
+  EXPECT_EQ(eight.trials_detected, 1u);
+  EXPECT_EQ(eight.bins[1].trials_detected, 1u);  // detected at 650 m
+  EXPECT_EQ(eight.bins[2].trials_detected, 0u);
+  const PdCurve nine = detection_probability(flights, {9, 1.0}, {500.0, 1000.0, 100.0}, 0.95);
+  EXPECT_EQ(nine.trials_detected, 0u);
+}
+
+std::string bins_error(const std::string& text) {
+  try {
+    (void)parse_range_bins(text);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(DetectionProbability, BinsAreBoundedAndRefusedInOneLine) {
+  const std::string expected =
+      "--bins: expected LO:HI:STEP with 0 ≤ LO < HI ≤ 1000000 m, 0.001 m ≤ STEP ≤ HI − LO and at "
+      "most 100000 bins, got ";
+  EXPECT_EQ(bins_error("0:1300:1e308"), expected + "0:1300:1e+308");
+  EXPECT_EQ(bins_error("0:1e308:1"), expected + "0:1e+308:1");
+  EXPECT_EQ(bins_error("0:1300:1e13"), expected + "0:1300:1e+13");
+  EXPECT_EQ(bins_error("0:1300:1301"), expected + "0:1300:1301");
+  EXPECT_EQ(bins_error("0:1300:0"), expected + "0:1300:0");
+  EXPECT_EQ(bins_error("0:1300:-50"), expected + "0:1300:-50");
+  EXPECT_EQ(bins_error("0:1300:0.0009"), expected + "0:1300:0.0009");
+  EXPECT_EQ(bins_error("0:1000001:100"), expected + "0:1000001:100");
+  EXPECT_EQ(bins_error("0:1000000:9.99"), expected + "0:1000000:9.99");  // 100,101 bins
+  EXPECT_EQ(bins_error("nan:1300:50"), expected + "nan:1300:50");
+  EXPECT_EQ(bins_error("0:inf:50"), expected + "0:inf:50");
+  EXPECT_EQ(bins_error("-1:1300:50"), expected + "-1:1300:50");
+  EXPECT_EQ(bins_error("0:1300"),
+            "--bins: expected LO:HI:STEP in metres (e.g. 0:1300:50), got '0:1300'");
+  // At the bounds: 10⁵ bins, one bin of the whole span, millimetre bins.
+  EXPECT_EQ(parse_range_bins("0:1000000:10").count(), 100'000u);
+  const RangeBins one = parse_range_bins("0:1300:1300");
+  EXPECT_EQ(one.count(), 1u);
+  EXPECT_EQ(one.bin_of(1299.999), std::optional<std::size_t>(0));
+  EXPECT_EQ(parse_range_bins("700:800:0.001").count(), 100'000u);
+  // Whatever a RangeBins holds, count() and bin_of() stay within bounds (no crash, no UB).
+  const RangeBins wide{0.0, 1300.0, 1e308};
+  EXPECT_EQ(wide.count(), 1u);
+  EXPECT_EQ(wide.bin_of(600.0), std::optional<std::size_t>(0));
+  const RangeBins many{0.0, 1e308, 1.0};
+  EXPECT_EQ(many.count(), kMaxBins + 1);
+  EXPECT_EQ(many.bin_of(1e300), std::optional<std::size_t>(kMaxBins));
 }
 
 }  // namespace

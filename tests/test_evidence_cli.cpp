@@ -136,7 +136,7 @@ TEST(EvidenceCli, AHeadOnFiveMillimetreWireIsDetectedExactlyWithinTheModelsRange
   ASSERT_NEAR(max_range, 834.2, 0.1);  // README "What the default sensor detects" (T = 0.0029)
   // The wire spans HELLAS's whole line (α ±21°) nearer than 1,000 m / tan 21° from its middle.
   const std::vector<ObjectTrack> tracks =
-      read_truth_csv(work / "head_on/truth.csv",
+      read_truth_csv(work / "head_on/truth.csv", read_flight_facts(work / "head_on/summary.json"),
                      [](std::string_view id, std::string_view) { return id == "wire/1"; });
   ASSERT_EQ(tracks.size(), 1u);
   // Half a frame of flight (50 m/s × 1/6 s) between a pulse and the frame's middle.
@@ -238,8 +238,9 @@ TEST(EvidenceCli, ScoreMatchesEachDetectionToTheNearestObjectWithinTheGate) {
   EXPECT_TRUE(object_entry(json, "pylon-1").at("detected").get<bool>());
   EXPECT_FALSE(object_entry(json, "pylon-3").at("detected").get<bool>());
   // The warning time runs to the closest approach in truth.csv.
-  const std::vector<ObjectTrack> tracks = read_truth_csv(
-      work / "r/truth.csv", [](std::string_view id, std::string_view) { return id == "pylon-2"; });
+  const std::vector<ObjectTrack> tracks =
+      read_truth_csv(work / "r/truth.csv", read_flight_facts(work / "r/summary.json"),
+                     [](std::string_view id, std::string_view) { return id == "pylon-2"; });
   ASSERT_EQ(tracks.size(), 1u);
   const auto closest = std::min_element(
       tracks[0].rows.begin(), tracks[0].rows.end(),
@@ -334,6 +335,16 @@ TEST(EvidenceCli, BadDetectionsAreRefusedInOneLineWithNothingWritten) {
   refused("time_s,lat_deg,lon_deg,h_m\n1,91,3,4\n", "d.csv:2");
   refused("time_s,e_m,n_m,u_m\n1,2,3\n", "d.csv:2: u_m");
   refused("time_s,e_m,n_m,u_m\n", "--gate-m", {"--gate-m", "0"});
+  // Regression (issue 45): the far side of the Earth and times of ±1e300 s were scored.
+  refused("time_s,lat_deg,lon_deg,h_m\n1,-48.6881,-169.1553,0\n", "d.csv:2: lat_deg,lon_deg,h_m");
+  refused("time_s,e_m,n_m,u_m\n1e300,0,0,0\n", "d.csv:2: time_s");
+  refused("time_s,e_m,n_m,u_m\n1,0,0,0\n-1e300,0,0,0\n", "d.csv:3: time_s");
+  // Regression (issue 45): a spreadsheet's byte-order mark was taken for part of "time_s".
+  std::ofstream(work / "bom.csv") << "\xEF\xBB\xBFtime_s,e_m,n_m,u_m\n1,0,0,300\n";
+  const auto bom = run_cli({"score", "r", "--detections", "bom.csv", "--quiet"}, work.path());
+  ASSERT_EQ(bom.exit_status, 0) << bom.err;
+  EXPECT_EQ(read_json(work / "r/score.json").at("detections"), 1);
+  EXPECT_EQ(read_json(work / "r/score.json").at("false_alarms"), 1);
   fs::create_directories(work / "folder");
   const auto folder = run_cli({"score", "r", "--detections", "folder"}, work.path());
   EXPECT_EQ(folder.err.rfind("owsim: --detections", 0), 0u) << folder.err;

@@ -7,8 +7,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -157,8 +159,8 @@ TEST(ReportPointsCsv, ReadsColumnsByNameAndNamesBadCells) {
   EXPECT_EQ(p.surface[0], static_cast<std::uint8_t>(SurfaceClass::wire));
   EXPECT_EQ(p.surface[1], kUnknownSurface);
   EXPECT_EQ(p.return_number[1], 2);
-  EXPECT_EQ(p.frame_first_time_s.size(), 3u);
-  EXPECT_DOUBLE_EQ(p.frame_first_time_s[2], 0.25);
+  EXPECT_EQ(p.frame_first_time_s.size(), 1u);
+  EXPECT_DOUBLE_EQ(p.frame_first_time_s.at(2), 0.25);
   const auto message = [&](const std::string& text) {
     try {
       (void)read_report_points_csv(write(text));
@@ -373,6 +375,137 @@ TEST(ReportPointsLas, LandsOnTheCsvPositions) {
     EXPECT_NEAR(pose[5].get<double>(), row.heading_deg, 1e-4) << k;
     EXPECT_NEAR(meta["frames"]["time_s"][k].get<double>(), row.time_s, 1e-9) << k;
   }
+}
+
+// Regression (issue 45): a crafted points.ply whose vertex count times 29 bytes wraps around 2^64
+// to the bytes the file holds passed the size check, and `owsim view` ended in an internal error
+// (std::bad_alloc reserving for the count). The count is now compared with the file's size by
+// division, and the header must be owsim's layout line by line.
+TEST(ReportPointsPly, CountsThatDoNotFitTheFileAreRefusedInOneLine) {
+  const TempDir dir;
+  const std::filesystem::path run = dir / "run";
+  const test::CliResult flown = test::run_cli(
+      {"run", (std::filesystem::path(OWSIM_SOURCE_DIR) / "examples/single_span.yaml").string(),
+       "--out", run.string(), "--frames", "2", "--outputs", "ply,summary", "--quiet"},
+      dir.path());
+  ASSERT_EQ(flown.exit_status, 0) << flown.err;
+  const std::string layout =
+      "property double x\nproperty double y\nproperty double z\nproperty float intensity\n"
+      "property uchar class\nend_header\n";
+  const std::string start = "ply\nformat binary_little_endian 1.0\ncomment crafted\n";
+  // 29 is odd, so it has an inverse modulo 2^64 (Newton's iteration doubles the good bits).
+  std::uint64_t inverse = 29;
+  for (int i = 0; i < 6; ++i) inverse *= 2 - 29 * inverse;
+  const std::uint64_t wrapping = 10 * inverse;  // × 29 = 10 (mod 2^64)
+  ASSERT_EQ(wrapping * 29, 10u);
+  ASSERT_GT(wrapping, std::uint64_t{1} << 59);
+  const auto message = [&](const std::string& bytes) {
+    std::ofstream(run / "points.ply", std::ios::binary) << bytes;
+    try {
+      (void)read_report_points_ply(run / "points.ply");
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string ply = (run / "points.ply").string();
+  const std::string ten(10, '\0');
+  EXPECT_EQ(message(start + "element vertex " + std::to_string(wrapping) + "\n" + layout + ten),
+            ply + ": holds 10 bytes after its header, which says " + std::to_string(wrapping) +
+                " vertices of 29 bytes");
+  const std::string not_owsim =
+      ply +
+      ": not the PLY layout owsim writes (binary little-endian double x y z, float intensity, "
+      "uchar class)";
+  EXPECT_EQ(message(start + "element vertex 99999999999999999999999\n" + layout), not_owsim);
+  EXPECT_EQ(message(start + "element vertex +1\n" + layout + std::string(29, '\0')), not_owsim);
+  EXPECT_EQ(message(start + "element vertex 1\nelement face 0\n" + layout + std::string(29, '\0')),
+            not_owsim);
+  EXPECT_EQ(message(start + std::string(100'000, 'x')), not_owsim);  // no header in 64 KiB
+  EXPECT_EQ(message(start + "element vertex 1\n" + layout + std::string(29, '\0')), "no error");
+
+  // The same through `owsim view`: one line, exit 1, no page.
+  message(start + "element vertex " + std::to_string(wrapping) + "\n" + layout + ten);
+  const test::CliResult view = test::run_cli({"view", run.string()}, dir.path());
+  EXPECT_EQ(view.exit_status, 1);
+  EXPECT_EQ(view.err, "owsim: " + ply + ": holds 10 bytes after its header, which says " +
+                          std::to_string(wrapping) + " vertices of 29 bytes\n");
+  EXPECT_FALSE(std::filesystem::exists(run / "report.html"));
+}
+
+// The same for points.las: a point count whose product with the record length wraps, and a
+// point offset beyond the file.
+TEST(ReportPointsLas, CountsThatDoNotFitTheFileAreRefusedInOneLine) {
+  const TempDir dir;
+  const test::CliResult flown = test::run_cli(
+      {"run", (std::filesystem::path(OWSIM_SOURCE_DIR) / "examples/single_span.yaml").string(),
+       "--out", (dir / "run").string(), "--frames", "2", "--outputs", "las", "--quiet"},
+      dir.path());
+  ASSERT_EQ(flown.exit_status, 0) << flown.err;
+  const std::string las = (dir / "run/points.las").string();
+  std::string bytes = test::read_whole_file(las);
+  ASSERT_GT(bytes.size(), 375u);
+  std::uint16_t record = 0;
+  std::memcpy(&record, bytes.data() + 105, 2);
+  ASSERT_EQ(record, 30);
+  const auto message = [&](const std::string& file) {
+    std::ofstream(las, std::ios::binary) << file;
+    try {
+      (void)read_report_points_las(las, std::nullopt);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  // count × 30 ≡ 0 (mod 2^64) for count = 2^63: the old "size < offset + count × 30" passed.
+  std::string wrapped = bytes;
+  const std::uint64_t count = std::uint64_t{1} << 63;
+  std::memcpy(wrapped.data() + 247, &count, 8);
+  EXPECT_EQ(message(wrapped),
+            las + ": shorter than its header's " + std::to_string(count) + " points");
+  std::string far = bytes;
+  const std::uint32_t offset = 0xFFFFFFF0u;
+  std::memcpy(far.data() + 96, &offset, 4);
+  EXPECT_EQ(message(far), las +
+                              ": its header size 375 and point offset 4294967280 do not fit its " +
+                              std::to_string(bytes.size()) + " bytes");
+  EXPECT_EQ(message(bytes), "no error");
+}
+
+// points.csv's frame numbers and summary.json's frame count size nothing: a single return at
+// frame 1,999,999,999 took 23 GB (a time per frame up to it) before it was killed, and a count of
+// 10^15 frames ended in std::bad_alloc.
+TEST(FlightReport, FrameNumbersSizeNoTable) {
+  const TempDir dir;
+  const std::filesystem::path run = dir / "run";
+  const test::CliResult flown = test::run_cli(
+      {"run", (std::filesystem::path(OWSIM_SOURCE_DIR) / "examples/single_span.yaml").string(),
+       "--out", run.string(), "--frames", "2", "--outputs", "summary", "--quiet"},
+      dir.path());
+  ASSERT_EQ(flown.exit_status, 0) << flown.err;
+  std::ofstream(run / "points.csv") << "frame,line,fiber,return,time_s,range_m,e_m,n_m,u_m,class\n"
+                                    << "1999999999,0,1,1,0.5,100,1,2,3,wire\n";
+  const FlightReport page = write_flight_report(run);
+  EXPECT_EQ(page.frames_total, 2'000'000'000);
+  EXPECT_EQ(page.frames_shown, 400);
+  const nlohmann::json meta =
+      nlohmann::json::parse(element(test::read_whole_file(page.file), "owsim-meta"));
+  EXPECT_EQ(meta["frames"]["shown"].back(), 1'995'000'000);
+  std::string summary = test::read_whole_file(run / "summary.json");
+  const std::string two_frames = "\"frames\": 2,";
+  const std::size_t at = summary.find(two_frames);
+  ASSERT_NE(at, std::string::npos);
+  summary.replace(at, two_frames.size(), "\"frames\": 1000000000000000,");
+  std::ofstream(run / "summary.json") << summary;
+  std::filesystem::remove(page.file);
+  try {
+    (void)write_flight_report(run);
+    FAIL() << "accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()),
+              (run / "summary.json").string() + ": frames: 1000000000000000 is outside 0..2e9");
+  }
+  EXPECT_FALSE(std::filesystem::exists(page.file));
 }
 
 }  // namespace

@@ -301,8 +301,12 @@ TEST(RocCli, BadKeysFoldersAndOptionsAreRefusedInOneLineWithNothingWritten) {
   refused({"roc", "sweep", "--by", "frames"}, "sweep/sweep.csv: frames: the sweep does not vary");
   refused({"roc", "sweep/0"}, "sweep/0: not a sweep folder (no sweep.csv)");
   refused({"roc", "nowhere"}, "nowhere: not a sweep folder");
-  refused({"roc", "sweep", "--range", "800:700"}, "--range: expected 0 ≤ LO < HI, got 800:700");
-  refused({"roc", "sweep", "--range", "-5:10"}, "--range: expected 0 ≤ LO < HI");
+  const std::string range =
+      "--range: expected 0 ≤ LO < HI ≤ 1000000 m with HI − LO ≥ 0.001 m, got ";
+  refused({"roc", "sweep", "--range", "800:700"}, range + "800:700");
+  refused({"roc", "sweep", "--range", "-5:10"}, range + "-5:10");
+  refused({"roc", "sweep", "--range", "0:1e308"}, range + "0:1e+308");
+  refused({"roc", "sweep", "--range", "700:700.0001"}, range + "700:700.0001");
   refused({"roc", "sweep", "--range", "700"}, "--range: expected LO:HI");
   refused({"roc", "sweep", "--range", "700:800:50"}, "--range: expected LO:HI");
   refused({"roc", "sweep", "--range", "nan:800"}, "--range: expected 0 ≤ LO < HI");
@@ -320,10 +324,35 @@ TEST(RocCli, BadKeysFoldersAndOptionsAreRefusedInOneLineWithNothingWritten) {
   EXPECT_FALSE(fs::exists(work / "half/roc.csv"));
   EXPECT_FALSE(fs::exists(work / "half/roc.csv.partial"));
   EXPECT_FALSE(fs::exists(work / "half/roc.svg"));
-  // A member's files, each named with its line when it is broken.
+  // The last file cannot be replaced (a folder at its name): the earlier ones keep their bytes.
+  const auto whole = run_cli({"roc", "sweep", "--out", "kept", "--quiet"}, work.path());
+  ASSERT_EQ(whole.exit_status, 0) << whole.err;
+  const std::string kept_csv = test::read_whole_file(work / "kept/roc.csv");
+  const std::string kept_json = test::read_whole_file(work / "kept/roc.json");
+  fs::remove(work / "kept/roc.svg");
+  fs::create_directories(work / "kept/roc.svg/inside");
+  const auto blocked =
+      run_cli({"roc", "sweep", "--out", "kept", "--range", "600:900"}, work.path());
+  EXPECT_NE(blocked.exit_status, 0);
+  EXPECT_EQ(blocked.err, "owsim: kept/roc.svg: is a folder: cannot replace it with the report\n");
+  EXPECT_EQ(test::read_whole_file(work / "kept/roc.csv"), kept_csv);
+  EXPECT_EQ(test::read_whole_file(work / "kept/roc.json"), kept_json);
+  EXPECT_FALSE(fs::exists(work / "kept/roc.csv.partial"));
+  // A member's files, each named with its line (or key) when it is broken.
   fs::remove(work / "sweep/3/summary.json");
   refused({"roc", "sweep"}, (fs::path("sweep") / "3" / "summary.json").string());
+  std::ofstream(work / "sweep/3/summary.json")
+      << R"({"frames": 20, "frame_period_s": 1e-300, "pulses": 20000, "returns": {}})";
+  refused({"roc", "sweep"},
+          "sweep/3/summary.json: frame_period_s: must be a number in [1e-06, 10000000] s, got "
+          "1e-300");
   write_member(work / "sweep/3", kMembers[3]);
+  std::ofstream(work / "sweep/4/truth.csv", std::ios::app)
+      << "20,5.125,wire/1,wire,700,0,0,1,1,0,\n";
+  refused({"roc", "sweep"},
+          "sweep/4/truth.csv:42: frame: must be a whole number in [0, 19] (summary.json counts 20 "
+          "frames), got '20'");
+  write_member(work / "sweep/4", kMembers[4]);
   std::ofstream(work / "sweep/5/truth.csv", std::ios::app) << "1,2,wire/1\n";
   refused({"roc", "sweep"}, "sweep/5/truth.csv:42");
   write_member(work / "sweep/5", kMembers[5]);

@@ -90,6 +90,24 @@ TEST_F(CsvFile, OwsimTrajectoryCsvReadsBack) {
               0.0, 0.05);
 }
 
+// Regression (issue 45): a file saved by a spreadsheet starts with a UTF-8 byte-order mark, which
+// hid the first column's name ("the header has no column 'time_s'"). Only a leading one is dropped.
+TEST_F(CsvFile, AByteOrderMarkBeforeTheHeaderIsDropped) {
+  const std::string header = "time_s,lat_deg,lon_deg,h_m,roll_deg,pitch_deg,heading_deg\n";
+  const std::string rows = "12.25,48.6881,10.8447,512.75,3.25,-2.5,359.5\n13,48.6,10.8,500,0,0,1\n";
+  const std::vector<NavRecord> records = read_trajectory_csv(write("\xEF\xBB\xBF" + header + rows));
+  ASSERT_EQ(records.size(), 2u);
+  EXPECT_EQ(records[0].time_s, 12.25);
+  EXPECT_EQ(records[0].attitude.heading_deg, 359.5);
+  EXPECT_EQ(records[1].time_s, 13.0);
+  // A mark anywhere else is no column name.
+  EXPECT_NE(error_text(header + rows + "\xEF\xBB\xBF" + rows).find(path_ + ":4: time_s"),
+            std::string::npos);
+  EXPECT_NE(
+      error_text("\n\xEF\xBB\xBF" + header + rows).find(path_ + ":2: the header has no column"),
+      std::string::npos);
+}
+
 TEST_F(CsvFile, MalformedInputNamesFileLineAndColumn) {
   const std::string header = "time_s,lat_deg,lon_deg,h_m,roll_deg,pitch_deg,heading_deg\n";
   EXPECT_EQ(error_text(header + "0,48.6,10.8,500,0,0,90\n1,48.6,10.8,500,abc,0,90\n"),

@@ -1,6 +1,7 @@
 #pragma once
 // The cells of owsim's CSV files (points.csv, trajectory.csv): numbers with a fixed resolution
-// and one spelling of zero, so the bytes do not depend on the host, and RFC 4180 text cells.
+// and one spelling of zero, so the bytes do not depend on the host, and RFC 4180 text cells; and
+// the lines and cells of the CSV files owsim reads.
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -26,10 +27,16 @@ void append_csv_integer(std::string& out, std::int64_t value);
 // The cell for `text`: unchanged, or in double quotes with quotes doubled if it holds a comma,
 // a double quote, CR or LF (RFC 4180).
 [[nodiscard]] std::string csv_cell(std::string_view text);
-// Calls visit(line, row) for each line of `text`: line numbers from 1, rows without their "\n" or
-// "\r\n". Text after the last line break is a line too.
+// `text` without the UTF-8 byte-order mark (EF BB BF) it may start with: spreadsheets write one at
+// the start of a CSV file. Every reader of a CSV file takes its first line through this.
+[[nodiscard]] constexpr std::string_view without_utf8_bom(std::string_view text) {
+  return text.starts_with("\xEF\xBB\xBF") ? text.substr(3) : text;
+}
+// Calls visit(line, row) for each line of `text` (a byte-order mark at its start dropped): line
+// numbers from 1, rows without their "\n" or "\r\n". Text after the last line break is a line too.
 template <typename Visit>
 void for_each_line(std::string_view text, Visit&& visit) {
+  text = without_utf8_bom(text);
   std::size_t begin = 0;
   for (std::int64_t line = 1; begin < text.size(); ++line) {
     std::size_t end = text.find('\n', begin);

@@ -55,12 +55,14 @@ ReportFrames report_frames(const ReportPoints& points, const RangeImageLayout& l
     last_frame = std::max<std::int64_t>(last_frame, frame);
   out.frames_total = std::max(frames_total_hint, last_frame + 1);
   const std::int64_t shown = std::min<std::int64_t>(out.frames_total, max_frames);
-  std::vector<std::int32_t> slot_of_frame(static_cast<std::size_t>(out.frames_total), -1);
-  for (std::int64_t i = 0; i < shown; ++i) {
-    const std::int64_t frame = i * out.frames_total / shown;
-    slot_of_frame[static_cast<std::size_t>(frame)] = static_cast<std::int32_t>(i);
-    out.frames.push_back(frame);
-  }
+  for (std::int64_t i = 0; i < shown; ++i) out.frames.push_back(i * out.frames_total / shown);
+  // Frame f is shown in slot i when ⌊i · total / shown⌋ = f; slots are at least a frame apart
+  // (total ≥ shown), so the only candidate is i = ⌈f · shown / total⌉. No table sized by the
+  // frame count (frames and shown below 2^31: the products stay below 2^62).
+  const auto slot_of_frame = [&](std::int64_t frame) -> std::int64_t {
+    const std::int64_t i = (frame * shown + out.frames_total - 1) / out.frames_total;
+    return i < shown && i * out.frames_total / shown == frame ? i : -1;
+  };
   const std::size_t rows = layout.fibers.size();
   const auto lines = static_cast<std::size_t>(layout.lines);
   const std::size_t cells = rows * lines;
@@ -68,7 +70,7 @@ ReportFrames report_frames(const ReportPoints& points, const RangeImageLayout& l
   out.planes.assign(static_cast<std::size_t>(shown) * frame_bytes, 0);
   std::vector<std::uint8_t> rank(static_cast<std::size_t>(shown) * cells, 99);
   for (std::size_t i = 0; i < points.frame.size(); ++i) {
-    const std::int32_t slot = slot_of_frame[static_cast<std::size_t>(points.frame[i])];
+    const std::int64_t slot = slot_of_frame(points.frame[i]);
     if (slot < 0) continue;
     const int fiber = points.fiber[i], line = points.line[i];
     const int row = fiber >= 0 && fiber < static_cast<int>(layout.row_of_fiber.size())

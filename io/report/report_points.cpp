@@ -13,11 +13,15 @@
 #include "geometry/error.hpp"
 #include "geometry/scene.hpp"
 #include "io/files/csv_cells.hpp"
+#include "io/files/input_file.hpp"
 
 namespace owsim {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr std::uintmax_t kMaxPlyHeaderBytes = 65536;
+// A vertex of points.ply (io/points/ply_writer.hpp): double x y z, float intensity, uchar class.
+constexpr std::size_t kPlyVertexBytes = 3 * 8 + 4 + 1;
 
 // Columns of points.csv the page uses, by their INTERFACE.md names.
 enum Column { kFrame, kLine, kFiber, kReturn, kTime, kRange, kE, kN, kU, kClass, kColumnCount };
@@ -66,7 +70,7 @@ class PointsCsvParser {
   void line(std::string_view text) {
     ++line_number_;
     if (!text.empty() && text.back() == '\r') text.remove_suffix(1);
-    if (line_number_ == 1) return header(text);
+    if (line_number_ == 1) return header(without_utf8_bom(text));
     if (text.empty()) return;
     const CsvLineError at(path_, line_number_);
     split_csv_cells(text, cells_);
@@ -85,17 +89,20 @@ class PointsCsvParser {
     out_.surface.push_back(index_[kClass] < 0 ? kUnknownSurface : surface_cell(cell(kClass), at));
     if (!out_.pulses_known) return;
     const double frame = number(kFrame);
-    if (!(frame >= 0 && frame < 2e9)) at.raise("frame: outside 0..2e9");
+    if (!(frame >= 0 && frame < static_cast<double>(kMaxReportFrames))) {
+      at.raise("frame: outside 0..2e9");
+    }
     out_.frame.push_back(static_cast<std::int32_t>(frame));
     out_.line.push_back(static_cast<std::int16_t>(std::clamp(number(kLine), -1.0, 32767.0)));
     out_.fiber.push_back(static_cast<std::int16_t>(std::clamp(number(kFiber), -1.0, 32767.0)));
     out_.return_number.push_back(
         static_cast<std::uint8_t>(std::clamp(number(kReturn), 0.0, 255.0)));
     const double time_s = number(kTime);
-    auto& times = out_.frame_first_time_s;
-    const auto f = static_cast<std::size_t>(frame);
-    if (times.size() <= f) times.resize(f + 1, kNaN);
-    if (std::isfinite(time_s) && !(times[f] <= time_s)) times[f] = time_s;
+    if (std::isfinite(time_s)) {
+      const auto [first, added] =
+          out_.frame_first_time_s.try_emplace(static_cast<std::int32_t>(frame), time_s);
+      if (!added && time_s < first->second) first->second = time_s;
+    }
   }
 
  private:
@@ -180,44 +187,54 @@ ReportPoints read_report_points_csv(const std::filesystem::path& path) {
 }
 
 ReportPoints read_report_points_ply(const std::filesystem::path& path) {
-  ReportPoints points;
-  points.source = "points.ply";
-  std::ifstream in = open_input(path);
   const auto bad = [&](std::string_view problem) { return input_error(path.string(), problem); };
-  std::string header, line;
-  std::uint64_t vertices = 0;
-  bool have_count = false;
-  while (std::getline(in, line)) {
-    header += line + "\n";
-    if (line.rfind("element vertex ", 0) == 0) {
-      const std::string_view count = std::string_view(line).substr(15);
-      const auto [end, error] =
-          std::from_chars(count.data(), count.data() + count.size(), vertices);
-      have_count = error == std::errc() && end == count.data() + count.size();
-    }
-    if (line == "end_header") break;
-    if (header.size() > 65536) break;
-  }
+  const std::uintmax_t size = require_input_file(path, "points file");
+  std::ifstream in = open_input(path);
+  // The header, within its first 64 KiB: "ply", the format, comments, one vertex element and
+  // the layout io/points/ply_writer.hpp writes, nothing else.
+  std::string head(static_cast<std::size_t>(std::min<std::uintmax_t>(size, kMaxPlyHeaderBytes)),
+                   '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  if (!in) throw file_error(path.string(), "read error");
+  constexpr std::string_view kStart = "ply\nformat binary_little_endian 1.0\n";
+  constexpr std::string_view kCount = "element vertex ";
   constexpr std::string_view kLayout =
       "property double x\nproperty double y\nproperty double z\nproperty float intensity\n"
       "property uchar class\nend_header\n";
-  if (header.rfind("ply\nformat binary_little_endian 1.0\n", 0) != 0 || !have_count ||
-      header.size() < kLayout.size() ||
-      header.compare(header.size() - kLayout.size(), kLayout.size(), kLayout) != 0) {
+  const std::string_view text(head);
+  std::size_t at = text.starts_with(kStart) ? kStart.size() : text.size();
+  while (text.substr(at).starts_with("comment ")) {
+    const std::size_t newline = text.find('\n', at);
+    at = newline == std::string_view::npos ? text.size() : newline + 1;
+  }
+  const std::size_t count_end = text.find('\n', at);
+  std::uint64_t vertices = 0;
+  bool have_count = false;
+  if (text.substr(at).starts_with(kCount) && count_end != std::string_view::npos) {
+    const std::string_view count = text.substr(at + kCount.size(), count_end - at - kCount.size());
+    const auto [end, error] = std::from_chars(count.data(), count.data() + count.size(), vertices);
+    have_count = error == std::errc() && end == count.data() + count.size() && !count.empty();
+  }
+  if (!have_count || !text.substr(count_end + 1).starts_with(kLayout)) {
     throw bad(
         "not the PLY layout owsim writes (binary little-endian double x y z, float "
         "intensity, uchar class)");
   }
-  constexpr std::size_t kVertexBytes = 3 * 8 + 4 + 1;
-  const std::uintmax_t expected = header.size() + vertices * kVertexBytes;
-  std::error_code error;
-  if (std::filesystem::file_size(path, error) != expected || error) {
-    throw bad("holds " + std::to_string(std::filesystem::file_size(path, error)) +
-              " bytes, its header says " + std::to_string(vertices) + " vertices (" +
-              std::to_string(expected) + " bytes)");
+  // The vertices fill the rest of the file exactly: counted from its size, so no product of the
+  // header's count can wrap.
+  const std::size_t header_bytes = count_end + 1 + kLayout.size();
+  const std::uintmax_t body_bytes = size - header_bytes;
+  if (body_bytes % kPlyVertexBytes != 0 || body_bytes / kPlyVertexBytes != vertices) {
+    throw bad("holds " + std::to_string(body_bytes) + " bytes after its header, which says " +
+              std::to_string(vertices) + " vertices of " + std::to_string(kPlyVertexBytes) +
+              " bytes");
   }
+  ReportPoints points;
+  points.source = "points.ply";
   points.e_m.reserve(vertices);
-  for_each_record(in, vertices, kVertexBytes, path, [&](const char* v) {
+  in.clear();
+  in.seekg(static_cast<std::streamoff>(header_bytes));
+  for_each_record(in, vertices, kPlyVertexBytes, path, [&](const char* v) {
     std::array<double, 3> xyz{};
     std::memcpy(xyz.data(), v, sizeof xyz);
     points.add(xyz[0], xyz[1], xyz[2], static_cast<float>(kNaN),

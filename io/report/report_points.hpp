@@ -11,6 +11,7 @@
 #include <istream>
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "geometry/geodetic_frame.hpp"
@@ -23,6 +24,9 @@ namespace owsim {
   return static_cast<std::uint16_t>(std::clamp(std::round(range_m * 10.0), 1.0, 65535.0));
 }
 
+// Frame numbers a flight folder's files may give (points.csv's frame, summary.json's frames).
+inline constexpr std::int64_t kMaxReportFrames = 2'000'000'000;
+
 struct ReportPoints {
   std::string source;                 // "points.csv", "points.ply" or "points.las"
   std::vector<float> e_m, n_m, u_m;   // local East-North-Up from the scenario origin
@@ -32,7 +36,9 @@ struct ReportPoints {
   std::vector<std::int32_t> frame;
   std::vector<std::int16_t> line, fiber;
   std::vector<std::uint8_t> return_number;
-  std::vector<double> frame_first_time_s;  // by frame: the earliest return's pulse time; NaN none
+  // By frame: the earliest return's pulse time, for frames with a return that has one. Sized by
+  // the frames the file holds, not by their numbers.
+  std::unordered_map<std::int32_t, double> frame_first_time_s;
 
   bool pulses_known = false;  // frame, line, fiber and return are filled
 

@@ -10,6 +10,7 @@
 
 #include "geometry/error.hpp"
 #include "geometry/scene.hpp"
+#include "io/files/input_file.hpp"
 #include "io/report/report_points.hpp"
 
 namespace owsim {
@@ -65,6 +66,7 @@ std::optional<LasGridRead> grid_of_wkt(const std::string& wkt) {
 ReportPoints read_report_points_las(const std::filesystem::path& path,
                                     const std::optional<Geodetic>& origin) {
   const auto bad = [&](const std::string& problem) { return input_error(path.string(), problem); };
+  const std::uintmax_t size = require_input_file(path, "points file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw file_error(path.string(), "cannot open for reading");
   std::array<char, 375> header{};
@@ -87,6 +89,14 @@ ReportPoints read_report_points_las(const std::filesystem::path& path,
   if ((format & 0x3F) != 6 || record_bytes < 30) {
     throw bad("point format " + std::to_string(format & 0x3F) + ", owsim view reads format 6");
   }
+  if (header_size < header.size() || point_offset < header_size || point_offset > size) {
+    throw bad("its header size " + std::to_string(header_size) + " and point offset " +
+              std::to_string(point_offset) + " do not fit its " + std::to_string(size) + " bytes");
+  }
+  // Compared by division: no product of the header's numbers can wrap.
+  if (count > (size - point_offset) / record_bytes) {
+    throw bad("shorter than its header's " + std::to_string(count) + " points");
+  }
   // The coordinate system: the WKT VLR (user "LASF_Projection", record 2112).
   std::optional<LasGridRead> grid;
   in.seekg(header_size);
@@ -102,11 +112,6 @@ ReportPoints read_report_points_las(const std::filesystem::path& path,
     }
   }
   if (!grid) throw bad("no UTM or UPS coordinate system in its WKT record");
-  std::error_code error;
-  const std::uintmax_t size = std::filesystem::file_size(path, error);
-  if (error || size < point_offset + count * record_bytes) {
-    throw bad("shorter than its header's " + std::to_string(count) + " points");
-  }
 
   ReportPoints points;
   points.source = "points.las";

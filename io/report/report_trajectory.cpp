@@ -24,6 +24,7 @@ ReportTrajectory read_report_trajectory(const std::filesystem::path& path) {
   std::string line;
   for (std::uint64_t number = 1; std::getline(in, line); ++number) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (number == 1) line.erase(0, line.size() - without_utf8_bom(line).size());
     split_csv_cells(line, cells);
     const std::string where = path.string() + ":" + std::to_string(number);
     if (number == 1) {

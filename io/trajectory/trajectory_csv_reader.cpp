@@ -7,6 +7,7 @@
 #include <string_view>
 
 #include "geometry/error.hpp"
+#include "io/files/csv_cells.hpp"
 #include "io/files/input_file.hpp"
 #include "io/trajectory/trajectory_text.hpp"
 
@@ -68,6 +69,7 @@ std::vector<NavRecord> read_trajectory_csv(const std::string& path) {
   std::size_t line_number = 0;
   while (std::getline(file, line)) {
     ++line_number;
+    if (line_number == 1) line.erase(0, line.size() - without_utf8_bom(line).size());
     if (trim(line).empty()) continue;
     const std::string where = path + ":" + std::to_string(line_number);
     if (!have_header) {
