@@ -1,17 +1,18 @@
 #include "distributed/sweep_run.hpp"
 
-#include <nlohmann/json.hpp>
-
 #include <array>
 #include <chrono>
+#include <nlohmann/json.hpp>
 #include <system_error>
 
 #include "distributed/member_dispenser.hpp"
+#include "distributed/sweep_members.hpp"
 #include "geometry/error.hpp"
 #include "geometry/number_text.hpp"
 #include "io/files/atomic_output_file.hpp"
 #include "io/files/input_file.hpp"
 #include "io/files/json_text.hpp"
+#include "io/files/output_open.hpp"
 #include "io/run/run_checkpoint.hpp"
 #include "io/sweep/sweep_table.hpp"
 #include "owsim/simulation.hpp"
@@ -75,6 +76,10 @@ std::set<OutputKind> member_outputs(const SweepSpec& spec) {
 SweepReport run_sweep(Communicator& comm, const SweepSpec& spec, const SweepRunOptions& options) {
   const bool root = comm.rank() == 0;
   const std::set<OutputKind> outputs = member_outputs(spec);
+  SimulationOptions simulation_options;
+  simulation_options.threads =
+      options.threads > 0 ? options.threads : default_threads_per_process(comm);
+  check_every_member(comm, spec, simulation_options);  // before anything is written
   std::string error;
   std::string skip_complete = "0";
   if (root) {
@@ -90,7 +95,7 @@ SweepReport run_sweep(Communicator& comm, const SweepSpec& spec, const SweepRunO
   SweepReport report;
   report.members = spec.count;
   report.processes = comm.size();
-  report.threads = options.threads > 0 ? options.threads : default_threads_per_process(comm);
+  report.threads = simulation_options.threads;
   std::array<std::uint64_t, 3> totals{};  // ran, skipped, pulses
   const auto start = Clock::now();
   {
@@ -98,28 +103,21 @@ SweepReport run_sweep(Communicator& comm, const SweepSpec& spec, const SweepRunO
     while (const std::optional<std::int64_t> member = dispenser.next()) {
       const std::filesystem::path directory = member_directory(spec, options.out, *member);
       const std::string name = member_folder_name(spec, *member);
+      make_output_subfolder(directory);  // a link planted at a member's name is not followed
       if (skip_complete == "1" && std::filesystem::exists(directory / "summary.json")) {
         ++totals[1];
         if (options.notice) options.notice("member " + name + " complete before: skipped");
         continue;
       }
-      SimulationOptions simulation_options;
-      simulation_options.threads = report.threads;
-      std::optional<Simulation> simulation;
-      try {
-        simulation.emplace(Simulation::from_yaml(member_scenario_text(spec, *member), spec.base,
-                                                 simulation_options));
-      } catch (const Error& e) {
-        throw Error(spec.file.string() + ": member " + name + ": " + e.what());
-      }
+      const Simulation simulation = member_simulation(spec, *member, simulation_options);
       RunOptions run;
       run.out = directory;
       run.outputs = outputs;
       run.resume = options.resume;
-      const RunReport member_report = simulation->run(run);
+      const RunReport member_report = simulation.run(run);
       ++totals[0];
       totals[2] += static_cast<std::uint64_t>(member_report.frames - member_report.first_frame) *
-                   static_cast<std::uint64_t>(simulation->pulses_per_frame());
+                   static_cast<std::uint64_t>(simulation.pulses_per_frame());
       if (options.notice) {
         options.notice("member " + name + " done: " + std::to_string(member_report.frames) +
                        " frames in " + number_text(member_report.wall_s, 3) + " s");

@@ -1,7 +1,7 @@
 #!/bin/sh
 # `owsim sweep` alone and under mpirun (issue 18): the same member folders (truth.csv included)
 # and sweep.csv for one process and N = 2, 3; a resumed sweep reruns only what is missing; a bad sweep file is said in
-# one line naming file, line and key.
+# one line naming file, line and key; a bad member is said once before any member flies.
 #   mpi_sweep.sh OWSIM SOURCE_DIR WORK_DIR
 set -eu
 owsim=$1
@@ -55,4 +55,14 @@ fi
 lines=$(grep -c '^owsim:' bad.log)
 if [ "$lines" -ne 1 ]; then echo "FAIL: $lines error lines"; cat bad.log; exit 1; fi
 grep '^owsim: bad.yaml:9: vary.sensor.mount.pitch_deg.normal:' bad.log
+# A bad value in two members (issue 45): every member is checked before the first flies, the
+# lowest bad one is said once whichever process found it, and nothing is written.
+sed 's/{values: \[4, 9, 2, 6, 3, 8, 5\]}/{values: [4, x, 2, 6, x, 8, 5]}/' sweep.yaml > members.yaml
+if $mpirun -np 2 "$owsim" sweep members.yaml --out members > members.log 2>&1; then
+  echo "FAIL: a sweep with bad members ran"; exit 1
+fi
+lines=$(grep -c '^owsim:' members.log)
+if [ "$lines" -ne 1 ]; then echo "FAIL: $lines error lines"; cat members.log; exit 1; fi
+grep '^owsim: members.yaml: member 1: ' members.log
+if [ -e members ]; then echo "FAIL: a refused sweep wrote members/"; exit 1; fi
 echo "mpi_sweep: ok"

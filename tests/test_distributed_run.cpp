@@ -5,6 +5,8 @@
 // sanitizers; tests/mpi_run.sh and mpi_sweep.sh check 1, 2 and 3 processes through mpirun.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
 
@@ -159,6 +161,65 @@ TEST(DistributedSweep, OneProcessRunsEveryMemberAndWritesTheTable) {
   EXPECT_EQ(resumed.skipped, 2);
   EXPECT_TRUE(test::read_whole_file(options.out / "1" / "flight.d64") == words);
   EXPECT_EQ(test::read_whole_file(options.out / "sweep.csv"), table);
+}
+
+// Regression (issue 45): members were checked only as each one ran, so with `values: [40, fast]`
+// member 0 flew (and .owsim-sweep.json was written) before member 1 was refused. Every member's
+// scenario is now opened as its run opens it — including what only the flight's setup checks, such
+// as a duration the trajectory cannot fly — before anything is written.
+TEST(DistributedSweep, EveryMemberIsCheckedBeforeTheFirstFlies) {
+  test::TempDir work;
+  fs::copy_file(kCorridor, work.path() / "corridor.yaml");
+  const auto refusal = [&](const std::string& vary) {
+    const fs::path sweep_file = work.path() / "sweep.yaml";
+    std::ofstream(sweep_file) << "base: corridor.yaml\ncount: 3\noutputs: d64\nvary:\n" << vary;
+    const SweepSpec spec = read_sweep_file(sweep_file);
+    std::unique_ptr<Communicator> comm = single_process_communicator();
+    SweepRunOptions options;
+    options.out = work.path() / "out";
+    options.threads = 1;
+    try {
+      static_cast<void>(run_sweep(*comm, spec, options));
+    } catch (const Error& e) {
+      EXPECT_FALSE(fs::exists(options.out)) << e.what();
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string sweep_file = (work.path() / "sweep.yaml").string();
+  const std::string corridor = (work.path() / "corridor.yaml").string();
+  EXPECT_EQ(refusal("  trajectory.waypoints.speed_mps: {values: [40, fast]}\n"
+                    "  trajectory.duration_s: {values: [1]}\n"),
+            sweep_file + ": member 1: " + corridor +
+                ": trajectory.waypoints.speed_mps: expected a number, got 'fast'");
+  // The route ends at 69.6 s: member 2 asks for 80 s, which only the flight's setup finds out.
+  const std::string too_long =
+      refusal("  trajectory.duration_s: {values: [1, 1, 80]}\n  seed: {member: true}\n");
+  EXPECT_EQ(too_long.rfind(sweep_file + ": member 2: ", 0), 0u) << too_long;
+  EXPECT_NE(too_long.find("frames fit"), std::string::npos) << too_long;
+  EXPECT_EQ(refusal("  trajectory.duration_s: {values: [1]}\n  seed: {member: true}\n"),
+            "no error");
+}
+
+// Regression (issue 45): `owsim sweep` over a sweep file that names itself as its base left
+// .owsim-sweep.json in the output folder.
+TEST(DistributedSweep, ARefusedSweepWritesNothing) {
+  test::TempDir work;
+  std::ofstream(work.path() / "self.yaml") << "base: self.yaml\ncount: 2\nvary: {}\n";
+  const test::CliResult self = test::run_cli({"sweep", "self.yaml", "--out", "out"}, work.path());
+  EXPECT_EQ(self.exit_status, 1);
+  EXPECT_EQ(
+      self.err,
+      "owsim: self.yaml:1: base: names this sweep file: the base is the scenario every member "
+      "starts from\n");
+  fs::copy_file(kCorridor, work.path() / "corridor.yaml");
+  std::ofstream(work.path() / "bad.yaml")
+      << "base: corridor.yaml\ncount: 2\nvary:\n  trajectory.duration_s: {values: [1, x]}\n";
+  const test::CliResult bad = test::run_cli({"sweep", "bad.yaml", "--out", "out"}, work.path());
+  EXPECT_EQ(bad.exit_status, 1);
+  EXPECT_EQ(bad.err.rfind("owsim: bad.yaml: member 1: ", 0), 0u) << bad.err;
+  EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+  EXPECT_FALSE(fs::exists(work.path() / "out"));
 }
 
 }  // namespace

@@ -140,23 +140,48 @@ TEST(SweepFile, BadInputNamesFileLineAndKey) {
             std::string::npos);
 }
 
+// A key path is checked against the base scenario when the sweep file is read, before anything
+// is written.
 TEST(SweepFile, AKeyPathThatLeadsNowhereIsNamed) {
-  test::TempDir work;
-  fs::copy_file(kExamples / "corridor.yaml", work.path() / "corridor.yaml");
-  const fs::path file = work.path() / "sweep.yaml";
-  std::ofstream(file) << kHead
-                      << "vary:\n  scene.spans[40].conductor.diameter_mm: {member: true}\n";
-  const SweepSpec spec = read_sweep_file(file);
-  try {
-    static_cast<void>(member_scenario_text(spec, 0));
-    FAIL() << "no error";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find(
-                  "sweep.yaml:4: vary.scene.spans[40].conductor.diameter_mm: the base scenario "
-                  "has no 'scene.spans[40]'"),
-              std::string::npos)
-        << e.what();
+  EXPECT_EQ(error_of(kHead + "vary:\n  scene.spans[40].conductor.diameter_mm: {member: true}\n"),
+            "sweep.yaml:4: vary.scene.spans[40].conductor.diameter_mm: the base scenario has no "
+            "'scene.spans[40]'");
+  EXPECT_EQ(error_of(kHead + "vary:\n  scene.spanz[0].id: {member: true}\n"),
+            "sweep.yaml:4: vary.scene.spanz[0].id: the base scenario has no 'scene.spanz'");
+}
+
+// Regression (issue 45): an index past size_t (std::from_chars's out-of-range left it 0) varied
+// spans[0]; "[0" with no "]" read past the key, and text after "]" was ignored.
+TEST(SweepFile, ListIndicesAreWholeNumbersThatFit) {
+  EXPECT_EQ(error_of(kHead + "vary:\n  scene.spans[99999999999999999999999].id: {member: true}\n"),
+            "sweep.yaml:4: vary.scene.spans[99999999999999999999999].id: list index "
+            "99999999999999999999999 is too large");
+  EXPECT_EQ(error_of(kHead + "vary:\n  scene.spans[18446744073709551616].id: {member: true}\n"),
+            "sweep.yaml:4: vary.scene.spans[18446744073709551616].id: list index "
+            "18446744073709551616 is too large");
+  EXPECT_EQ(error_of(kHead + "vary:\n  scene.spans[18446744073709551615].id: {member: true}\n"),
+            "sweep.yaml:4: vary.scene.spans[18446744073709551615].id: the base scenario has no "
+            "'scene.spans[18446744073709551615]'");
+  for (const std::string key : {"scene.spans[0", "scene.spans[0]x.id", "scene.spans[].id",
+                                "scene.spans[-1].id", "scene.spans[+1].id", "scene.spans]0[.id",
+                                "scene..spans", "scene.[0]", "scene.spans[0]]"}) {
+    EXPECT_EQ(
+        error_of(kHead + "vary:\n  '" + key + "': {member: true}\n"),
+        "sweep.yaml:4: vary." + key + ": expected a key path of dot-separated keys and [i] indices")
+        << key;
   }
+  EXPECT_EQ(error_of(kHead + "vary:\n  scene.spans[1].id: {values: [x]}\n"), "no error");
+}
+
+// Regression (issue 45): a sweep file naming itself as its base was read, and `owsim sweep` left
+// .owsim-sweep.json behind before member 0 failed.
+TEST(SweepFile, ABaseThatIsTheSweepFileItselfIsRefused) {
+  EXPECT_EQ(error_of("base: sweep.yaml\ncount: 2\nvary: {}\n"),
+            "sweep.yaml:1: base: names this sweep file: the base is the scenario every member "
+            "starts from");
+  EXPECT_EQ(error_of("base: ./sweep.yaml\ncount: 2\nvary: {}\n"),
+            "sweep.yaml:1: base: names this sweep file: the base is the scenario every member "
+            "starts from");
 }
 
 }  // namespace

@@ -5,6 +5,8 @@
 #include <charconv>
 #include <cmath>
 #include <limits>
+#include <string_view>
+#include <system_error>
 
 #include "geometry/error.hpp"
 #include "geometry/keyed_random.hpp"
@@ -80,25 +82,37 @@ struct PathStep {
   std::vector<std::size_t> indices;
 };
 
+// "scene.spans[0].id" → {scene}, {spans, 0}, {id}: keys of one or more characters other than
+// '.', '[' and ']', each followed by any number of [i], i a decimal index that fits size_t.
 std::vector<PathStep> path_steps(const std::string& path) {
+  const auto syntax = [] {
+    return Error("expected a key path of dot-separated keys and [i] indices");
+  };
   std::vector<PathStep> steps;
   std::size_t begin = 0;
   while (begin <= path.size()) {
     const std::size_t dot = std::min(path.find('.', begin), path.size());
-    std::string part = path.substr(begin, dot - begin);
+    const std::string_view part = std::string_view(path).substr(begin, dot - begin);
     PathStep step;
-    const std::size_t bracket = part.find('[');
-    step.key = part.substr(0, bracket);
-    for (std::size_t at = bracket; at != std::string::npos; at = part.find('[', at + 1)) {
+    const std::size_t bracket = std::min(part.find('['), part.size());
+    step.key = std::string(part.substr(0, bracket));
+    if (step.key.empty() || step.key.find(']') != std::string::npos) throw syntax();
+    for (std::size_t at = bracket; at < part.size();) {
       const std::size_t close = part.find(']', at);
+      if (part[at] != '[' || close == std::string_view::npos) throw syntax();
+      const std::string_view digits = part.substr(at + 1, close - at - 1);
       std::size_t index = 0;
-      const auto result = std::from_chars(part.data() + at + 1, part.data() + close, index);
-      if (close == std::string::npos || result.ptr != part.data() + close) {
-        throw Error("a key path of dot-separated keys and [i] indices");
+      const auto [end, error] =
+          std::from_chars(digits.data(), digits.data() + digits.size(), index);
+      if (error == std::errc::result_out_of_range) {
+        throw Error("list index " + std::string(digits.substr(0, 40)) + " is too large");
+      }
+      if (digits.empty() || error != std::errc() || end != digits.data() + digits.size()) {
+        throw syntax();
       }
       step.indices.push_back(index);
+      at = close + 1;
     }
-    if (step.key.empty()) throw Error("a key path of dot-separated keys and [i] indices");
     steps.push_back(std::move(step));
     begin = dot + 1;
   }
@@ -120,6 +134,10 @@ SweepSpec read_sweep_file(const std::filesystem::path& path) {
   } catch (const Error& e) {
     base.fail(e.what());
   }
+  std::error_code error;
+  if (std::filesystem::equivalent(spec.base, path, error)) {
+    base.fail("names this sweep file: the base is the scenario every member starts from");
+  }
   spec.count = root.require("count").integer(1, kMaxMembers);
   if (const auto seed = root.get("seed")) spec.seed = seed->unsigned_integer();
   if (const auto outputs = root.get("outputs")) spec.outputs = outputs->text();
@@ -131,12 +149,15 @@ SweepSpec read_sweep_file(const std::filesystem::path& path) {
     try {
       static_cast<void>(path_steps(key));
     } catch (const Error& e) {
-      value.fail(std::string("expected ") + e.what());
+      value.fail(e.what());
     }
     spec.vary.push_back(read_variation(key, value));
   }
   keys.finish();
   root.finish();
+  // Every key path leads through the base scenario (as member 0's values leave it): refused here,
+  // before anything is written, rather than when a member is made.
+  static_cast<void>(member_scenario_text(spec, 0));
   return spec;
 }
 

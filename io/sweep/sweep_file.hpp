@@ -47,7 +47,8 @@ struct SweepSpec {
   std::vector<SweepVariation> vary;  // in file order
 };
 
-// Reads and checks a sweep file and its base scenario's text.
+// Reads and checks a sweep file and its base scenario's text: a base that is not the sweep file
+// itself, key paths whose indices fit and that lead through the base (as member 0 has it).
 [[nodiscard]] SweepSpec read_sweep_file(const std::filesystem::path& path);
 
 // Member m's value of each variation, in spec.vary order, as YAML text (numbers in their
