@@ -114,7 +114,8 @@ void add_studio_command(CLI::App& app, CommandResult& /*result*/) {
   command->add_option("--port", options->port, "the port on 127.0.0.1 (default: a free one)")
       ->check(CLI::Range(0, 65535));
   command->add_option("--out", options->out,
-                      "the output folder of Fly (default: out/<scenario> beside the scenario)");
+                      "the output folder of Fly, replaced whole by each flight that completes "
+                      "(default: out/<scenario> beside the scenario)");
   command->add_flag("--no-browser", options->no_browser, "print the address, open no browser");
   command->callback([options] { run_studio(*options); });
 }

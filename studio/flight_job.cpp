@@ -4,8 +4,10 @@
 #include <utility>
 
 #include "geometry/error.hpp"
+#include "io/files/confined_path.hpp"
 #include "owsim/flight_report.hpp"
 #include "owsim/simulation.hpp"
+#include "studio/folder_replacement.hpp"
 
 namespace owsim::studio {
 namespace {
@@ -14,6 +16,26 @@ namespace {
 struct Cancelled {};
 
 }  // namespace
+
+void check_output_folder(const std::filesystem::path& out,
+                         const std::filesystem::path& scenario_file) {
+  const auto refuse = [&](const std::string& what) {
+    return Error(out.string() + ": " + what +
+                 "; Fly replaces its output folder whole: choose another --out");
+  };
+  if (inside_tree(out, std::filesystem::weakly_canonical(scenario_file).parent_path())) {
+    throw refuse("holds the scenario");
+  }
+  std::error_code error;
+  if (!std::filesystem::exists(std::filesystem::symlink_status(out, error))) return;
+  if (!std::filesystem::is_directory(std::filesystem::symlink_status(out, error))) {
+    throw refuse("not a folder");
+  }
+  if (!std::filesystem::is_empty(out, error) &&
+      !std::filesystem::is_regular_file(out / "summary.json", error)) {
+    throw refuse("holds files that are not a flight's (no summary.json)");
+  }
+}
 
 FlightJob::~FlightJob() {
   cancel();
@@ -46,16 +68,21 @@ void FlightJob::fly(const std::string& yaml, const std::filesystem::path& scenar
   try {
     const Simulation simulation = Simulation::from_yaml(yaml, scenario_file);
     frames_total_ = simulation.frame_count();
+    const std::filesystem::path folder = std::filesystem::weakly_canonical(out);
+    check_output_folder(folder, scenario_file);
+    FolderReplacement replacement(folder);
     set_state("flying");
     RunOptions options;
-    options.out = out;
+    options.out = replacement.path();
     options.progress = [this](const RunProgress& progress) {
       frames_done_ = progress.frames_done;
       if (cancel_) throw Cancelled{};
     };
     (void)simulation.run(options);
+    replacement.commit();
+    // The page names its folder: written where the flight now is.
     set_state("report");
-    (void)write_flight_report(out);
+    (void)write_flight_report(folder);
     set_state("done");
   } catch (const Cancelled&) {
     set_state("cancelled");

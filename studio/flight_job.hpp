@@ -1,8 +1,11 @@
 #pragma once
 // The studio's one run at a time (docs/studio.md "Fly"): the scenario's YAML flown through the
-// facade (Simulation::from_yaml … run, what `owsim run` does) into the output folder on a thread
-// of its own, then that folder's report page (`owsim view`). Progress is read while it runs; a
-// cancel stops it after the frame in hand and the run removes its partial outputs.
+// facade (Simulation::from_yaml … run, what `owsim run` does) on a thread of its own into a new
+// folder that replaces the output folder whole once the flight completes
+// (folder_replacement.hpp), then that folder's report page (`owsim view`). Progress is read
+// while it runs; a cancel stops it after the frame in hand, and a cancelled or failed flight
+// leaves the output folder as the previous flight left it. The output folder must be new, empty
+// or a flight's (its summary.json), and must not hold the scenario.
 #include <atomic>
 #include <filesystem>
 #include <mutex>
@@ -11,6 +14,12 @@
 #include <thread>
 
 namespace owsim::studio {
+
+// Fly replaces the output folder `out` whole, so it must hold nothing else: not the scenario's
+// folder or one above it, and new, empty or a flight's (its summary.json). Throws owsim::Error
+// with one line saying why not.
+void check_output_folder(const std::filesystem::path& out,
+                         const std::filesystem::path& scenario_file);
 
 class FlightJob {
  public:

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdint>
 #include <fstream>
+#include <functional>
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -13,12 +15,12 @@
 #include "geometry/error.hpp"
 #include "geometry/geodetic_frame.hpp"
 #include "io/files/atomic_output_file.hpp"
-#include "io/files/confined_path.hpp"
 #include "io/files/input_file.hpp"
 #include "owsim/simulation.hpp"
 #include "studio/flight_job.hpp"
 #include "studio/loader_message.hpp"
 #include "studio/request_guard.hpp"
+#include "studio/request_path.hpp"
 #include "studio/scene_view.hpp"
 #include "studio/studio_page.hpp"
 
@@ -26,12 +28,16 @@
 // would rewrite Eigen's parameters of that name.
 #include <httplib.h>
 
+#include "studio/bounded_http_server.hpp"
+#include "studio/served_file.hpp"
+
 namespace owsim::studio {
 namespace {
 
 using nlohmann::json;
 namespace fs = std::filesystem;
 
+// Every request body, however it comes (a length, chunks, gzip), as the route reads it.
 constexpr std::size_t kMaxRequestBytes = 8u << 20;  // a scenario's YAML is kilobytes
 
 // Everything the browser may load or call from the app: its own origin and nothing else, so no
@@ -50,9 +56,37 @@ std::optional<std::string> header(const httplib::Request& request, const char* n
   return request.get_header_value(name);
 }
 
+// Text that is not UTF-8 (a file name on disk, bytes of a request) goes out as U+FFFD, never as
+// an exception from the JSON library.
 void send_json(httplib::Response& response, const json& body, int status = 200) {
   response.status = status;
-  response.set_content(body.dump(), "application/json");
+  response.set_content(body.dump(-1, ' ', false, json::error_handler_t::replace),
+                       "application/json");
+}
+
+void send_problem(httplib::Response& response, const std::string& message, int status) {
+  send_json(response, {{"ok", false}, {"problem", {{"message", message}}}}, status);
+}
+
+// The request's body, read as it comes and refused (413, and the connection closes) as soon as
+// it passes kMaxRequestBytes; nullopt once the answer is set.
+std::optional<std::string> read_body(const httplib::ContentReader& reader,
+                                     httplib::Response& response) {
+  std::string body;
+  bool too_long = false;
+  const bool read = reader([&](const char* data, std::size_t size) {
+    too_long = size > kMaxRequestBytes - body.size();
+    if (!too_long) body.append(data, size);
+    return !too_long;
+  });
+  if (read) return body;
+  BoundedHttpServer::close_after(response);
+  if (too_long || response.status == 413) {
+    send_problem(response, "studio: a request body is at most 8 MB", 413);
+  } else {
+    send_problem(response, "studio: the request's body could not be read", 400);
+  }
+  return std::nullopt;
 }
 
 std::string_view content_type_of(const std::filesystem::path& file) {
@@ -67,12 +101,44 @@ std::string_view content_type_of(const std::filesystem::path& file) {
   return "application/octet-stream";
 }
 
+// A request the routes never see, answered here before its body is read (the connection closes
+// after the answer): a path that is not strictly percent-encoded UTF-8 text (request_path.hpp)
+// 404; a method other than GET, HEAD or POST 405; a body declared longer than kMaxRequestBytes
+// 413; a multipart form 415 (the API takes text). A GET or HEAD with a body is served, and its
+// connection closes, its body unread.
+bool refused_before_routing(const httplib::Request& request, httplib::Response& response) {
+  int status = 0;
+  std::string message;
+  if (!request_path(request.target)) {
+    status = 404;
+    message = "studio: no such page";
+  } else if (request.method != "GET" && request.method != "HEAD" && request.method != "POST") {
+    status = 405;
+    message = "studio: " + request.method + " is not a method of the studio";
+  } else if (request.has_header("Content-Length") &&
+             request.get_header_value<std::uint64_t>("Content-Length") > kMaxRequestBytes) {
+    status = 413;
+    message = "studio: a request body is at most 8 MB";
+  } else if (request.is_multipart_form_data()) {
+    status = 415;
+    message = "studio: the API takes text, not a multipart form";
+  }
+  const bool has_body = request.has_header("Transfer-Encoding") ||
+                        request.get_header_value<std::uint64_t>("Content-Length") > 0;
+  if (status != 0 || (request.method != "POST" && has_body)) {
+    BoundedHttpServer::close_after(response);
+  }
+  if (status == 0) return false;
+  send_problem(response, message, status);
+  return true;
+}
+
 }  // namespace
 
 struct StudioServer::State {
   StudioOptions options;
   std::filesystem::path folder;  // the scenario's folder (canonical)
-  httplib::Server server;
+  BoundedHttpServer server;
   int port = 0;
   std::mutex save_mutex;
   FlightJob job;
@@ -84,6 +150,16 @@ struct StudioServer::State {
     } catch (const std::exception& error) {
       return loader_message(error.what(), options.scenario_file.string());
     }
+  }
+
+  // A POST route: `handler` gets the request's body (read_body).
+  void post(const std::string& pattern,
+            std::function<void(const std::string& body, httplib::Response&)> handler) {
+    server.Post(pattern,
+                [handler = std::move(handler)](const httplib::Request&, httplib::Response& response,
+                                               const httplib::ContentReader& reader) {
+                  if (const auto body = read_body(reader, response)) handler(*body, response);
+                });
   }
 
   void routes();
@@ -112,8 +188,8 @@ void StudioServer::State::routes() {
                          {"yaml", yaml},
                          {"run", job.status()}});
   });
-  server.Post("/api/view", [this](const httplib::Request& request, httplib::Response& response) {
-    auto loaded = load(request.body);
+  post("/api/view", [this](const std::string& body, httplib::Response& response) {
+    auto loaded = load(body);
     if (auto* problem = std::get_if<json>(&loaded)) {
       send_json(response, {{"ok", false}, {"problem", *problem}});
       return;
@@ -122,9 +198,9 @@ void StudioServer::State::routes() {
   });
   // WGS-84 points as east/north metres in the local frame of `origin` (a rectangle drawn on the
   // map becomes a forest's area or a fog box, keys that take metres).
-  server.Post("/api/enu", [](const httplib::Request& request, httplib::Response& response) {
+  post("/api/enu", [](const std::string& text, httplib::Response& response) {
     try {
-      const json body = json::parse(request.body);
+      const json body = json::parse(text);
       const json& origin = body.at("origin");
       const LocalFrame frame(Geodetic{origin.at("lat").get<double>(),
                                       origin.at("lon").get<double>(),
@@ -142,26 +218,25 @@ void StudioServer::State::routes() {
                 400);
     }
   });
-  server.Post("/api/save", [this](const httplib::Request& request, httplib::Response& response) {
-    auto loaded = load(request.body);
+  post("/api/save", [this](const std::string& body, httplib::Response& response) {
+    auto loaded = load(body);
     if (auto* problem = std::get_if<json>(&loaded)) {
       send_json(response, {{"ok", false}, {"problem", *problem}});
       return;
     }
     const std::lock_guard lock(save_mutex);
     AtomicOutputFile file(options.scenario_file);
-    file.write(request.body);
+    file.write(body);
     file.commit();
     send_json(response, {{"ok", true}, {"saved", options.scenario_file.filename().string()}});
   });
-  server.Post("/api/fly", [this](const httplib::Request& request, httplib::Response& response) {
-    auto loaded = load(request.body);
+  post("/api/fly", [this](const std::string& body, httplib::Response& response) {
+    auto loaded = load(body);
     if (auto* problem = std::get_if<json>(&loaded)) {
       send_json(response, {{"ok", false}, {"problem", *problem}});
       return;
     }
-    std::filesystem::create_directories(options.out);
-    if (!job.start(request.body, options.scenario_file, options.out)) {
+    if (!job.start(body, options.scenario_file, options.out)) {
       send_json(response, {{"ok", false}, {"problem", {{"message", "a run is in progress"}}}}, 409);
       return;
     }
@@ -196,21 +271,26 @@ void StudioServer::State::routes() {
   server.Get("/api/run", [this](const httplib::Request&, httplib::Response& response) {
     send_json(response, job.status());
   });
-  server.Post("/api/cancel", [this](const httplib::Request&, httplib::Response& response) {
+  post("/api/cancel", [this](const std::string&, httplib::Response& response) {
     job.cancel();
     send_json(response, job.status());
   });
   // The output folder's files (the report page and what it links), confined to the folder.
   server.Get(R"(/out/(.+))", [this](const httplib::Request& request, httplib::Response& response) {
+    const std::string name = request.matches[1].str();
     try {
-      const std::filesystem::path root = std::filesystem::weakly_canonical(options.out);
-      const std::filesystem::path file = confined_file(root, request.matches[1].str());
+      serve_file(response, fs::weakly_canonical(options.out), name,
+                 std::string(content_type_of(name)));
       response.set_header("Content-Security-Policy", kReportSecurityPolicy);
-      response.set_content(read_input_file(file, "output file", 0),
-                           std::string(content_type_of(file)));
-    } catch (const std::exception& error) {
-      send_json(response, {{"ok", false}, {"problem", {{"message", error.what()}}}}, 404);
+    } catch (const std::exception&) {
+      send_problem(response, "studio: out/" + name + ": no such file in the output folder", 404);
     }
+  });
+  // A POST to no route above: refused before its body is read.
+  server.Post(".*", [](const httplib::Request&, httplib::Response& response,
+                       const httplib::ContentReader&) {
+    BoundedHttpServer::close_after(response);
+    send_problem(response, "studio: no such page", 404);
   });
 }
 
@@ -220,33 +300,40 @@ StudioServer::StudioServer(StudioOptions options) : state_(std::make_unique<Stat
   options.scenario_file = std::filesystem::absolute(options.scenario_file);
   options.out = std::filesystem::absolute(options.out);
   state.folder = std::filesystem::weakly_canonical(options.scenario_file.parent_path());
+  check_output_folder(std::filesystem::weakly_canonical(options.out), options.scenario_file);
   state.options = std::move(options);
-  httplib::Server& server = state.server;
+  BoundedHttpServer& server = state.server;
   server.set_payload_max_length(kMaxRequestBytes);
-  server.set_pre_routing_handler(
-      [&state](const httplib::Request& request, httplib::Response& response) {
-        RequestFacts facts;
-        facts.host = header(request, "Host");
-        facts.origin = header(request, "Origin");
-        facts.token_header = header(request, "X-Owsim-Token");
-        facts.cookie = header(request, "Cookie");
-        if (request.has_param("token")) facts.token_query = request.get_param_value("token");
-        const Verdict verdict = check_request(facts, state.port, state.options.token);
-        if (verdict == Verdict::allowed) return httplib::Server::HandlerResponse::Unhandled;
-        response.status = verdict == Verdict::no_token ? 401 : 403;
-        response.set_content(std::string(verdict_text(verdict)) + "\n", "text/plain");
-        return httplib::Server::HandlerResponse::Handled;
-      });
+  server.set_pre_routing_handler([&state](const httplib::Request& request,
+                                          httplib::Response& response) {
+    RequestFacts facts;
+    facts.host = header(request, "Host");
+    facts.origin = header(request, "Origin");
+    facts.token_header = header(request, "X-Owsim-Token");
+    facts.cookie = header(request, "Cookie");
+    if (request.has_param("token")) facts.token_query = request.get_param_value("token");
+    const Verdict verdict = check_request(facts, state.port, state.options.token);
+    if (verdict != Verdict::allowed) {
+      BoundedHttpServer::close_after(response);
+      response.status = verdict == Verdict::no_token ? 401 : 403;
+      response.set_content(std::string(verdict_text(verdict)) + "\n", "text/plain");
+      return httplib::Server::HandlerResponse::Handled;
+    }
+    return refused_before_routing(request, response) ? httplib::Server::HandlerResponse::Handled
+                                                     : httplib::Server::HandlerResponse::Unhandled;
+  });
+  // owsim's own errors are one line meant for the user; anything else is not shown.
   server.set_exception_handler(
       [](const httplib::Request&, httplib::Response& response, std::exception_ptr error) {
         std::string message = "studio: an unexpected error";
         try {
           std::rethrow_exception(std::move(error));
-        } catch (const std::exception& exception) {
-          message = exception.what();
+        } catch (const Error& owsim_error) {
+          message = owsim_error.what();
         } catch (...) {
         }
-        send_json(response, {{"ok", false}, {"problem", {{"message", message}}}}, 500);
+        BoundedHttpServer::close_after(response);
+        send_problem(response, message, 500);
       });
   state.routes();
   const std::string loopback = "127.0.0.1";
@@ -259,6 +346,7 @@ StudioServer::StudioServer(StudioOptions options) : state_(std::make_unique<Stat
     throw Error("studio: cannot listen on " + loopback + ":" + std::to_string(state.options.port) +
                 " (in use?)");
   }
+  server.widen_listen_queue();
 }
 
 StudioServer::~StudioServer() { stop(); }

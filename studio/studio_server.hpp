@@ -3,9 +3,10 @@
 // address serving the web app (web/studio/, bundled at build time) and a small JSON API over the
 // facade — the scenario's YAML, what the loader makes of an edit (the map's view, or the loader's
 // one-line error with its line and key), Save, Fly (one run at a time, progress, cancel) and the
-// output folder's files (the report page). Every request passes request_guard.hpp; files are read
-// only inside the scenario's folder tree and the output folder, and written only to the scenario
-// file and the output folder.
+// output folder's files (the report page). Every request passes request_guard.hpp and
+// request_path.hpp, every connection bounded_http_server.hpp's bounds, every body at most 8 MB
+// however it is sent; files are read only inside the scenario's folder tree and the output
+// folder, and written only to the scenario file and the output folder.
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -22,7 +23,8 @@ struct StudioOptions {
 
 class StudioServer {
  public:
-  // Binds 127.0.0.1 (only); throws owsim::Error when the port cannot be bound.
+  // Binds 127.0.0.1 (only); throws owsim::Error when the port cannot be bound, or when the
+  // output folder cannot be Fly's (flight_job.hpp check_output_folder).
   explicit StudioServer(StudioOptions options);
   StudioServer(const StudioServer&) = delete;
   StudioServer& operator=(const StudioServer&) = delete;
