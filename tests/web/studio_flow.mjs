@@ -40,6 +40,12 @@ page.on('request', (r) => {
 
 page.on('console', (m) => { if (process.env.STUDIO_DEBUG) console.error(`[${m.type()}] ${m.text()}`); });
 
+// Waits until the map's select mode holds a feature of `kind` (the object under the click).
+async function waitForSelected(kind) {
+  await page.waitForFunction((k) => window.owsimStudio.drawing.draw.getSnapshot()
+    .some((f) => f.properties.selected && f.properties.kind === k), kind, { timeout: 90000 });
+}
+
 // On any step that fails: a screenshot, the document and the console, to see why.
 async function explain(error) {
   console.error(`studio_flow: ${error.message}`);
@@ -78,8 +84,8 @@ if (mode === '--terrain') {
   });
   await page.locator('#tools button[data-tool="mesh"]').click();
   await page.mouse.click(spot.x, spot.y);
-  await page.waitForSelector('select[name="scene.meshes[1].file"]', { timeout: 30000 });
-  await page.waitForFunction(() => window.owsimStudio.view.objects.filter((o) => o.class === 'building').length === 2, null, { timeout: 30000 });
+  await page.waitForSelector('select[name="scene.meshes[1].file"]', { timeout: 90000 });
+  await page.waitForFunction(() => window.owsimStudio.view.objects.filter((o) => o.class === 'building').length === 2, null, { timeout: 90000 });
   const problem = await page.locator('#problem').innerText();
   check(problem === '', `a problem after placing the mesh: ${problem}`);
   // The new barn dragged 60 px south by its origin: its `at` moves south.
@@ -91,12 +97,13 @@ if (mode === '--terrain') {
   }, [barnBefore.lat, barnBefore.lon]);
   await page.locator('#tools button[data-tool="select"]').click();
   await page.mouse.click(barn.x, barn.y);
-  await page.waitForTimeout(200);
+  // The drag starts once the map has selected the barn (a fixed pause was too short under load).
+  await waitForSelected('mesh');
   await page.mouse.move(barn.x, barn.y);
   await page.mouse.down();
   for (let step = 1; step <= 10; step += 1) await page.mouse.move(barn.x, barn.y + 6 * step);
   await page.mouse.up();
-  await page.waitForFunction((lat) => window.owsimStudio.doc.get(['scene', 'meshes', 1, 'at']).lat < lat - 1e-5, barnBefore.lat, { timeout: 30000 });
+  await page.waitForFunction((lat) => window.owsimStudio.doc.get(['scene', 'meshes', 1, 'at']).lat < lat - 1e-5, barnBefore.lat, { timeout: 90000 });
 
   // The forest dragged east by its area: its east range moves, its north range stays.
   const before = await page.evaluate(() => window.owsimStudio.doc.get(['scene', 'forest', 'area']));
@@ -111,12 +118,12 @@ if (mode === '--terrain') {
   });
   await page.locator('#tools button[data-tool="select"]').click();
   await page.mouse.click(grip.x, grip.y);
-  await page.waitForTimeout(200);
+  await waitForSelected('forest');
   await page.mouse.move(grip.x, grip.y);
   await page.mouse.down();
   for (let step = 1; step <= 10; step += 1) await page.mouse.move(grip.x + 8 * step, grip.y);
   await page.mouse.up();
-  await page.waitForFunction((e0) => window.owsimStudio.doc.get(['scene', 'forest', 'area', 'e'])[0] !== e0, before.e[0], { timeout: 30000 });
+  await page.waitForFunction((e0) => window.owsimStudio.doc.get(['scene', 'forest', 'area', 'e'])[0] !== e0, before.e[0], { timeout: 90000 });
   const after = await page.evaluate(() => window.owsimStudio.doc.get(['scene', 'forest', 'area']));
   const moved = after.e[0] - before.e[0];
   check(moved > 20 && Math.abs(after.e[1] - before.e[1] - moved) < 1 && Math.abs(after.n[0] - before.n[0]) < 5,
@@ -147,9 +154,9 @@ const setSlider = async (id, value) => {
   }, value);
 };
 await setSlider('seg-end', 100);
-await page.waitForFunction(() => /duration_s: 100\b/.test(window.owsimStudio.doc.text()), null, { timeout: 30000 });
+await page.waitForFunction(() => /duration_s: 100\b/.test(window.owsimStudio.doc.text()), null, { timeout: 90000 });
 await setSlider('seg-start', 40);
-await page.waitForFunction(() => /duration_s: 60\b/.test(window.owsimStudio.doc.text()), null, { timeout: 30000 });
+await page.waitForFunction(() => /duration_s: 60\b/.test(window.owsimStudio.doc.text()), null, { timeout: 90000 });
 await setSlider('cursor', 70);
 
 // 2. A span across the track at 70 s: two clicks 120 m either side of it, across its heading.
@@ -179,29 +186,29 @@ await page.locator('#tools button[data-tool="span"]').click();
 await page.mouse.click(clicks[0].x, clicks[0].y);
 await page.waitForTimeout(200);
 await page.mouse.click(clicks[1].x, clicks[1].y);
-await page.waitForSelector('input[name="scene.spans[0].conductor.diameter_mm"]', { timeout: 30000 });
+await page.waitForSelector('input[name="scene.spans[0].conductor.diameter_mm"]', { timeout: 90000 });
 spans = await page.evaluate(() => window.owsimStudio.doc.list(['scene', 'spans']).length);
 // The pointer's coordinates: WGS-84 and the scenario's east/north, from the server.
 await page.mouse.move(clicks[1].x + 3, clicks[1].y + 3);
-await page.waitForFunction(() => /°.*e -?\d+\.\d m, n -?\d+\.\d m/.test(document.querySelector('#cursor-coords').textContent), null, { timeout: 30000 });
+await page.waitForFunction(() => /°.*e -?\d+\.\d m, n -?\d+\.\d m/.test(document.querySelector('#cursor-coords').textContent), null, { timeout: 90000 });
 check(spans === 1, `${spans} spans after two clicks`);
 
 // 3. A bad diameter: the loader's message beside its field; then a good one.
 const diameter = page.locator('input[name="scene.spans[0].conductor.diameter_mm"]');
 await diameter.fill('-3');
 await diameter.press('Tab');
-await page.waitForFunction(() => document.querySelector('.field.bad .field-problem')?.textContent, null, { timeout: 30000 });
+await page.waitForFunction(() => document.querySelector('.field.bad .field-problem')?.textContent, null, { timeout: 90000 });
 const beside = await page.locator('.field.bad .field-problem').innerText();
 check(/must be in \[1, 200\] mm/.test(beside), `the bad diameter's message: '${beside}'`);
 await page.screenshot({ path: join(shotDir, 'studio_problem.png') });
 await diameter.fill('30');
 await diameter.press('Tab');
-await page.waitForFunction(() => !document.querySelector('.field.bad'), null, { timeout: 30000 });
+await page.waitForFunction(() => !document.querySelector('.field.bad'), null, { timeout: 90000 });
 // Undo brings the bad diameter back with its message; Redo the good one.
 await page.locator('#undo').click();
-await page.waitForFunction(() => document.querySelector('.field.bad') && /diameter_mm: -3\b/.test(window.owsimStudio.doc.text()), null, { timeout: 30000 });
+await page.waitForFunction(() => document.querySelector('.field.bad') && /diameter_mm: -3\b/.test(window.owsimStudio.doc.text()), null, { timeout: 90000 });
 await page.locator('#redo').click();
-await page.waitForFunction(() => !document.querySelector('.field.bad') && /diameter_mm: 30\b/.test(window.owsimStudio.doc.text()), null, { timeout: 30000 });
+await page.waitForFunction(() => !document.querySelector('.field.bad') && /diameter_mm: 30\b/.test(window.owsimStudio.doc.text()), null, { timeout: 90000 });
 await page.screenshot({ path: join(shotDir, 'studio_span.png') });
 
 // 4. Fly: progress, then the report with wire returns.
@@ -218,14 +225,14 @@ await page.screenshot({ path: join(shotDir, 'studio_report.png') });
 //    form and its cross-section against the ground.
 await frame.locator('tr[data-object="span-1/1"]').click();
 await page.waitForSelector('#report-pane[hidden]', { state: 'attached', timeout: 30000 });
-await page.waitForSelector('#cross-section:not([hidden])', { timeout: 30000 });
+await page.waitForSelector('#cross-section:not([hidden])', { timeout: 90000 });
 const picked = await page.evaluate(() => window.owsimStudio.selected);
 check(picked?.kind === 'span' && picked?.id === 'span-1', `the truth row picked ${JSON.stringify(picked)}`);
 await page.screenshot({ path: join(shotDir, 'studio_section.png') });
 
 // 6. Save.
 await page.locator('#save').click();
-await page.waitForFunction(() => /saved/.test(document.querySelector('#status').textContent), null, { timeout: 30000 });
+await page.waitForFunction(() => /saved/.test(document.querySelector('#status').textContent), null, { timeout: 90000 });
 
 } catch (error) {
   await explain(error);
