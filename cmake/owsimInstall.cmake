@@ -5,7 +5,7 @@ include(CMakePackageConfigHelpers)
 
 install(TARGETS owsim owsim_geometry owsim_sensor owsim_engine owsim_io owsim_io_files
                 owsim_io_scenario owsim_io_trajectory owsim_io_points owsim_io_images
-                owsim_io_recording owsim_io_run owsim_io_sweep owsim_io_report
+                owsim_io_recording owsim_io_run owsim_io_sweep owsim_io_report owsim_io_mcap
                 owsim_evaluation owsim_facade
         EXPORT owsimTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT dev

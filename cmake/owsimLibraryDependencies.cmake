@@ -6,7 +6,11 @@ find_package(embree 3.13 REQUIRED)
 find_package(TBB REQUIRED)
 find_package(yaml-cpp REQUIRED)
 find_package(nlohmann_json 3 REQUIRED)
-find_package(ZLIB REQUIRED)   # deflate of the report page's data (io/report/)
+find_package(ZLIB REQUIRED)   # deflate of the report page's data (io/report/), MCAP's CRC-32
+# zstd: the chunks of flight.mcap (io/mcap/), through its pkg-config file (hence pkg-config in
+# libowsim-dev's Depends).
+find_package(PkgConfig REQUIRED)
+pkg_check_modules(ZSTD REQUIRED IMPORTED_TARGET libzstd)
 
 # GeographicLib ships only a find module on Debian; wrap its variables in a target.
 list(APPEND CMAKE_MODULE_PATH /usr/share/cmake/geographiclib)

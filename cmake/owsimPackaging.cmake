@@ -71,6 +71,7 @@ set(CPACK_COMPONENT_PYTHON_DESCRIPTION
 # the -dev packages of what owsim's libraries use (cmake/owsimLibraryDependencies.cmake).
 set(CPACK_DEBIAN_DEV_PACKAGE_DEPENDS
     "owsim (= ${PROJECT_VERSION}), libeigen3-dev (>= 3.4), libembree-dev (>= 3.13), libtbb-dev, \
-libyaml-cpp-dev, nlohmann-json3-dev, libgeographiclib-dev, zlib1g-dev, libnova-dev")
+libyaml-cpp-dev, nlohmann-json3-dev, libgeographiclib-dev, zlib1g-dev, libnova-dev, \
+libzstd-dev, pkg-config")
 set(CPACK_DEBIAN_OWSIM_PACKAGE_CONTROL_EXTRA ${CMAKE_CURRENT_SOURCE_DIR}/cmake/deb/triggers)
 include(CPack)

@@ -13,10 +13,10 @@ declare -A part
 part[core]="build-essential cmake ninja-build pkg-config
   libembree-dev libtbb-dev libgeographiclib-dev libeigen3-dev
   libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libfmt-dev
-  libboost-dev zlib1g-dev libcpp-httplib-dev libnova-dev"
+  libboost-dev zlib1g-dev libzstd-dev libcpp-httplib-dev libnova-dev"
 # Boost.Math (header-only): Clopper–Pearson intervals of owsim pd/score; zlib: the report page's
-# data; cpp-httplib: owsim studio's local server; libnova: the sun's position for a scenario's
-# `sun: {time_utc}`.
+# data and flight.mcap's CRCs; zstd: flight.mcap's chunks; cpp-httplib: owsim studio's local
+# server; libnova: the sun's position for a scenario's `sun: {time_utc}`.
 part[png]="libopenimageio-dev"                                # quicklook/ (libowsim_png.so)
 part[gdal]="libgdal-dev"                                      # DEM terrain, GIS lines (libowsim_gdal.so)
 part[mesh]="libassimp-dev libtinyobjloader-dev"               # model files (libowsim_mesh.so)
