@@ -1,5 +1,6 @@
 #include "engine/embree_scene.hpp"
 
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -150,7 +151,13 @@ double EmbreeScene::capture_radius_m(const Conductor& conductor) const {
 
 float EmbreeScene::wire_search_end(double solid_range_m) {
   const double end = solid_range_m * (1.0 + kDepthMarginRelative) + kDepthMarginAbsolute_m;
-  return std::nextafter(static_cast<float>(end), INFINITY);
+  const auto rounded = static_cast<float>(end);
+  // The next float up: one step of the bits for a finite non-negative float (what nextafter
+  // gives, without its call on every pulse).
+  if (rounded >= 0.0f && rounded < std::numeric_limits<float>::max()) {
+    return std::bit_cast<float>(std::bit_cast<std::uint32_t>(rounded) + 1u);
+  }
+  return std::nextafter(rounded, INFINITY);
 }
 
 void EmbreeScene::attach_conductors(const EmbreeDevice& device) {

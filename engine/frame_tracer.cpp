@@ -39,34 +39,41 @@ double solid_background(const ReceiverNoise& noise, const Eigen::Vector3d& norma
   return noise.sunlit() ? noise.solid_background(normal, ray.dir_enu, reflectivity) : 0.0;
 }
 
-// The nearest solid hit Embree reported, turned into the pulse's solid candidate in double.
+// The nearest solid hit Embree reported, turned into the pulse's solid candidate in double; its
+// angle and energy are left to the chunk's batch (the terms go there).
 void record_solid(const EmbreeScene& scene, const ReceiverNoise& noise, const PulseRay& ray,
-                  const RTCHit& solid, const CylinderRecord& cylinder, PulseCandidates& out) {
+                  const RTCHit& solid, const CylinderRecord& cylinder, PulseCandidates& out,
+                  SurfaceEnergyBatch& batch) {
   const unsigned geom_id = solid.geomID, prim_id = solid.primID;
   if (geom_id == kNoHit) return;
   const Scene& objects = scene.scene();
   const ReceiverParams& receiver = scene.receiver();
+  const auto set_solid = [&](double range_m, const SurfaceTerms& terms, std::uint32_t object,
+                             SurfaceClass surface, const Eigen::Vector3d& normal) {
+    out.set_solid(solid_candidate(range_m, {}, object, surface),
+                  solid_background(noise, normal, ray, terms.reflectivity));
+    batch.add(terms);
+  };
   if (geom_id < objects.meshes.size()) {
     const MeshObject& mesh = objects.meshes[geom_id];
     const TriangleHit hit = exact_mesh_hit(mesh.mesh, prim_id, ray.origin_enu_m, ray.dir_enu);
-    out.set_solid(
-        mesh_candidate(ray, hit.t, hit.normal, mesh, mesh_object_index(objects, geom_id), receiver),
-        solid_background(noise, hit.normal, ray, mesh.reflectivity));
+    set_solid(hit.t, extended_surface_terms(ray, hit.t, hit.normal, mesh.reflectivity, receiver),
+              mesh_object_index(objects, geom_id), mesh.surface, hit.normal);
     return;
   }
   if (geom_id == scene.cylinders_geom_id()) {
     if (cylinder.prim_id != prim_id) throw Error("engine: cylinder hit record out of step");
     const Cylinder& hit_cylinder = objects.cylinders[prim_id];
-    out.set_solid(cylinder_candidate(ray, hit_cylinder, cylinder.hit,
-                                     cylinder_object_index(objects, prim_id), receiver),
-                  solid_background(noise, cylinder.hit.normal, ray, hit_cylinder.reflectivity));
+    set_solid(cylinder.hit.t, cylinder_terms(ray, hit_cylinder, cylinder.hit, receiver),
+              cylinder_object_index(objects, prim_id), hit_cylinder.surface, cylinder.hit.normal);
     return;
   }
   if (scene.is_terrain(geom_id)) {
     const TriangleHit hit = scene.terrain_hit(solid, ray);
-    out.set_solid(ground_candidate(ray, hit.t, hit.normal, objects.terrain.reflectivity,
-                                   ground_object_index(objects), receiver),
-                  solid_background(noise, hit.normal, ray, objects.terrain.reflectivity));
+    set_solid(
+        hit.t,
+        extended_surface_terms(ray, hit.t, hit.normal, objects.terrain.reflectivity, receiver),
+        ground_object_index(objects), SurfaceClass::ground, hit.normal);
   }
 }
 
@@ -153,6 +160,8 @@ void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const st
   }
   std::array<CylinderRecord, kChunk> cylinder_hits;
   std::array<RTCRayHit, kChunk> rayhits;
+  SurfaceEnergyBatch batch;
+  static_assert(kChunk <= SurfaceEnergyBatch::kCapacity);
   const double max_range = timeout_range_m(scene_->receiver().counter);
   const auto tfar = static_cast<float>(max_range);
 
@@ -179,13 +188,21 @@ void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const st
       ++n;
     }
 
-    // Pass 1: the nearest solid (pole, tree, mesh, ground) along each central ray.
+    // Pass 1: the nearest solid (pole, tree, mesh, ground) along each central ray; the angles
+    // and energies of the block's hits in one batch.
     intersect_block(api_, scene_->solids(), context, rayhits.data(), n);
+    batch.clear();
     for (unsigned i = 0; i < n; ++i) {
       const RTCRayHit& rayhit = rayhits[i];
       const unsigned id = rayhit.ray.id;
-      record_solid(*scene_, noise_, rays[id], rayhit.hit, cylinder_hits[id - block],
-                   candidates[id]);
+      record_solid(*scene_, noise_, rays[id], rayhit.hit, cylinder_hits[id - block], candidates[id],
+                   batch);
+    }
+    batch.evaluate();
+    std::size_t slot = 0;
+    for (unsigned i = 0; i < n; ++i) {
+      PulseCandidates& pulse = candidates[rayhits[i].ray.id];
+      if (pulse.has_solid()) pulse.complete_solid(batch.result(slot++));
     }
 
     // Pass 2: the wires in front of it. The filter offers only segments nearer than the solid

@@ -8,6 +8,7 @@
 #include "sensor/fiber_layout.hpp"
 #include "sensor/motor_encoder.hpp"
 #include "sensor/scan_params_check.hpp"
+#include "sensor/vector_clones.hpp"
 
 namespace owsim {
 namespace {
@@ -25,14 +26,7 @@ struct Quadratic {
         p2(2.0 * at_0 - 4.0 * at_half + 2.0 * at_1) {}
 };
 
-// The chunk arithmetic below is compiled for AVX2 as well as the x86-64 baseline (SSE2) where
-// GCC can do so, and the CPU's best is chosen when the program loads: its loops run on twice the
-// lanes. "avx2" does not enable FMA, so both versions round every operation alike: the same bits.
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
-#define OWSIM_AVX2_CLONE __attribute__((target_clones("avx2", "default")))
-#else
-#define OWSIM_AVX2_CLONE
-#endif
+// The chunk arithmetic below is compiled for AVX2 as well (sensor/vector_clones.hpp).
 
 constexpr int kMaxChunk = 64;
 
@@ -46,9 +40,9 @@ struct LineChunk {
   const double* blend = nullptr;  // s = slot / F
   bool time_from_index = false;   // the line's first flight index is a double exactly
   bool milows = false;
-  double start_s = 0, prf_hz = 0, line_index = 0;                     // time
+  double start_s = 0, prf_hz = 0, line_index = 0;                                // time
   double beta_start_deg = 0, signed_sweep_deg = 0, first = 0, frame_pulses = 0;  // mirror β
-  double u[3][3] = {}, v[3][3] = {}, w[3][3] = {}, o[3][3] = {};  // [j][component]
+  double u[3][3] = {}, v[3][3] = {}, w[3][3] = {}, o[3][3] = {};                 // [j][component]
 };
 
 struct ChunkArrays {
@@ -116,9 +110,9 @@ FrameRayBuilder::FrameRayBuilder(const ScanParams& scan, const Mount& mount)
   const int pulses = scan_.pulses_per_frame();
   const auto fibers = static_cast<std::size_t>(scan_.fibers_per_line);
   slots_.resize(fibers);
-  for (std::vector<double>* column : {&slot_rays_.a[0], &slot_rays_.a[1], &slot_rays_.b[0],
-                                      &slot_rays_.b[1], &slot_rays_.sin_alpha, &slot_rays_.s,
-                                      &slot_rays_.slot}) {
+  for (std::vector<double>* column :
+       {&slot_rays_.a[0], &slot_rays_.a[1], &slot_rays_.b[0], &slot_rays_.b[1],
+        &slot_rays_.sin_alpha, &slot_rays_.s, &slot_rays_.slot}) {
     column->assign(fibers, 0.0);
   }
   for (std::size_t index = 0; index < fibers; ++index) {

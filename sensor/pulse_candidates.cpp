@@ -27,46 +27,51 @@ bool wire_segment_candidate(const PulseRay& ray, const Conductor& conductor, std
   return true;
 }
 
-Candidate cylinder_candidate(const PulseRay& ray, const Cylinder& cylinder, const CylinderHit& hit,
-                             std::uint32_t object, const ReceiverParams& receiver) {
-  const double incidence = surface_incidence_deg(ray.dir_enu, hit.normal);
+SurfaceTerms cylinder_terms(const PulseRay& ray, const Cylinder& cylinder, const CylinderHit& hit,
+                            const ReceiverParams& receiver) {
   // A hit on the top cap sees a disc, not a strip: the whole beam counts when it lies inside.
   const double axis_distance = hit.face == CylinderFace::wall ? hit.axis_distance_m : 0.0;
-  const ReturnEnergy energy =
-      cylinder_return_energy(axis_distance, hit.t, cylinder.radius_m, incidence,
-                             cylinder.reflectivity, receiver.beam, receiver.atmosphere);
-  return Candidate{hit.t, energy.energy_rel, incidence, object,
-                   static_cast<std::uint8_t>(cylinder.surface)};
+  return SurfaceTerms{
+      ray.dir_enu, hit.normal,
+      cylinder_footprint_fraction(axis_distance, hit.t, cylinder.radius_m, receiver.beam),
+      cylinder.reflectivity, two_way_transmission(receiver.atmosphere, hit.t)};
 }
 
-namespace {
+SurfaceTerms extended_surface_terms(const PulseRay& ray, double range_m,
+                                    const Eigen::Vector3d& normal, double reflectivity,
+                                    const ReceiverParams& receiver) {
+  return SurfaceTerms{ray.dir_enu, normal, 1.0, reflectivity,
+                      two_way_transmission(receiver.atmosphere, range_m)};
+}
 
-// A central-ray hit on an extended surface: the whole footprint on it (SENSOR-SPEC §7).
-Candidate extended_surface_candidate(const PulseRay& ray, double range_m,
-                                     const Eigen::Vector3d& normal, double reflectivity,
-                                     SurfaceClass surface, std::uint32_t object,
-                                     const ReceiverParams& receiver) {
-  const double incidence = surface_incidence_deg(ray.dir_enu, normal);
-  const ReturnEnergy energy =
-      ground_return_energy(range_m, incidence, reflectivity, receiver.atmosphere);
-  return Candidate{range_m, energy.energy_rel, incidence, object,
+Candidate solid_candidate(double range_m, const AngleEnergy& angle_energy, std::uint32_t object,
+                          SurfaceClass surface) {
+  return Candidate{range_m, angle_energy.energy_rel, angle_energy.incidence_deg, object,
                    static_cast<std::uint8_t>(surface)};
 }
 
-}  // namespace
+Candidate cylinder_candidate(const PulseRay& ray, const Cylinder& cylinder, const CylinderHit& hit,
+                             std::uint32_t object, const ReceiverParams& receiver) {
+  return solid_candidate(hit.t, surface_angle_energy(cylinder_terms(ray, cylinder, hit, receiver)),
+                         object, cylinder.surface);
+}
 
 Candidate ground_candidate(const PulseRay& ray, double range_m, const Eigen::Vector3d& normal,
                            double reflectivity, std::uint32_t object,
                            const ReceiverParams& receiver) {
-  return extended_surface_candidate(ray, range_m, normal, reflectivity, SurfaceClass::ground,
-                                    object, receiver);
+  return solid_candidate(
+      range_m,
+      surface_angle_energy(extended_surface_terms(ray, range_m, normal, reflectivity, receiver)),
+      object, SurfaceClass::ground);
 }
 
 Candidate mesh_candidate(const PulseRay& ray, double range_m, const Eigen::Vector3d& normal,
                          const MeshObject& mesh, std::uint32_t object,
                          const ReceiverParams& receiver) {
-  return extended_surface_candidate(ray, range_m, normal, mesh.reflectivity, mesh.surface, object,
-                                    receiver);
+  return solid_candidate(range_m,
+                         surface_angle_energy(extended_surface_terms(ray, range_m, normal,
+                                                                     mesh.reflectivity, receiver)),
+                         object, mesh.surface);
 }
 
 void PulseCandidates::offer_wire(const Candidate& candidate) {

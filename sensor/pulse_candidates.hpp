@@ -21,6 +21,7 @@
 #include "geometry/cylinder.hpp"
 #include "geometry/scene.hpp"
 #include "sensor/receiver.hpp"
+#include "sensor/surface_energy_batch.hpp"
 
 namespace owsim {
 
@@ -44,6 +45,20 @@ struct PulseRay {
 [[nodiscard]] bool wire_segment_candidate(const PulseRay& ray, const Conductor& conductor,
                                           std::size_t segment, std::uint32_t object,
                                           const ReceiverParams& receiver, Candidate& out);
+// What a central-ray hit on a pole or tree contributes before its angle is taken: the angle to
+// the hit's normal, the footprint share on the cylinder, its reflectivity and T_atm
+// (SENSOR-SPEC §7 pinned per surface)
+[[nodiscard]] SurfaceTerms cylinder_terms(const PulseRay& ray, const Cylinder& cylinder,
+                                          const CylinderHit& hit, const ReceiverParams& receiver);
+// The same for a central-ray hit on an extended surface (ground, mesh): footprint 1
+[[nodiscard]] SurfaceTerms extended_surface_terms(const PulseRay& ray, double range_m,
+                                                  const Eigen::Vector3d& normal,
+                                                  double reflectivity,
+                                                  const ReceiverParams& receiver);
+// A solid hit's candidate from its range, angle and energy (surface_angle_energy or a batch)
+[[nodiscard]] Candidate solid_candidate(double range_m, const AngleEnergy& angle_energy,
+                                        std::uint32_t object, SurfaceClass surface);
+
 // The candidate of a central-ray hit on a pole or tree  (SENSOR-SPEC §7 pinned per surface)
 [[nodiscard]] Candidate cylinder_candidate(const PulseRay& ray, const Cylinder& cylinder,
                                            const CylinderHit& hit, std::uint32_t object,
@@ -76,6 +91,12 @@ class PulseCandidates {
     solid_ = candidate;
     solid_background_ = background;
     has_solid_ = true;
+  }
+  // The solid hit's angle and energy, when set_solid was given its range, object and class only
+  // (the tracer evaluates a chunk's angles in one batch).
+  void complete_solid(const AngleEnergy& angle_energy) {
+    solid_.incidence_deg = angle_energy.incidence_deg;
+    solid_.energy_rel = angle_energy.energy_rel;
   }
   [[nodiscard]] bool has_solid() const { return has_solid_; }
   [[nodiscard]] const Candidate& solid() const { return solid_; }

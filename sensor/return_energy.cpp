@@ -1,15 +1,8 @@
 #include "sensor/return_energy.hpp"
 
 #include "sensor/footprint.hpp"
-#include "sensor/reflectivity.hpp"
 
 namespace owsim {
-
-double energy_rel(double footprint_fraction, double incidence_deg, double reflectivity,
-                  double transmission) {
-  return footprint_fraction * (reflectivity_pct(incidence_deg) / kReflectivityNormalPct) *
-         reflectivity * transmission;
-}
 
 bool beam_touches_wire(double distance_m, double range_m, double wire_radius_m,
                        const BeamParams& beam) {
@@ -29,17 +22,22 @@ ReturnEnergy wire_return_energy(double distance_m, double range_m, double wire_r
   return result;
 }
 
+double cylinder_footprint_fraction(double axis_distance_m, double range_m, double cylinder_radius_m,
+                                   const BeamParams& beam) {
+  const double beam_radius = beam_radius_m(range_m, beam);
+  return axis_distance_m + beam_radius <= cylinder_radius_m
+             ? 1.0
+             : footprint_fraction(axis_distance_m, cylinder_radius_m, beam_radius);
+}
+
 ReturnEnergy cylinder_return_energy(double axis_distance_m, double range_m,
                                     double cylinder_radius_m, double incidence_deg,
                                     double reflectivity, const BeamParams& beam,
                                     const Atmosphere& atmosphere) {
-  const double beam_radius = beam_radius_m(range_m, beam);
   ReturnEnergy result;
   result.candidate = axis_distance_m <= cylinder_radius_m;
   result.footprint_fraction =
-      axis_distance_m + beam_radius <= cylinder_radius_m
-          ? 1.0
-          : footprint_fraction(axis_distance_m, cylinder_radius_m, beam_radius);
+      cylinder_footprint_fraction(axis_distance_m, range_m, cylinder_radius_m, beam);
   result.energy_rel = energy_rel(result.footprint_fraction, incidence_deg, reflectivity,
                                  two_way_transmission(atmosphere, range_m));
   return result;

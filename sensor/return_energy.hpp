@@ -9,6 +9,7 @@
 // Valid for ranges ≥ 0 and A in [0, 1]; the result is then in [0, 1].
 #include "sensor/atmosphere.hpp"
 #include "sensor/beam.hpp"
+#include "sensor/reflectivity.hpp"
 
 namespace owsim {
 
@@ -19,9 +20,12 @@ struct ReturnEnergy {
   double energy_rel = 0.0;          // ξ_rx / ξ_tx
 };
 
-// (a_fp / a_ls) · (Ref(θ) / 40) · A · T_atm  (SENSOR-SPEC §7, eq 7.13)
-[[nodiscard]] double energy_rel(double footprint_fraction, double incidence_deg,
-                                double reflectivity, double transmission);
+// (a_fp / a_ls) · (Ref(θ) / 40) · A · T_atm  (SENSOR-SPEC §7, eq 7.13); inline, for array loops
+[[nodiscard]] inline double energy_rel(double footprint_fraction, double incidence_deg,
+                                       double reflectivity, double transmission) {
+  return footprint_fraction * (reflectivity_pct(incidence_deg) / kReflectivityNormalPct) *
+         reflectivity * transmission;
+}
 
 // Whether the beam touches a wire: the closest-approach distance d < r_wire + r_beam(R), R the
 // range along the ray to the closest approach (SENSOR-SPEC §7, closest approach eq 7.1–7.7)
@@ -41,6 +45,8 @@ struct ReturnEnergy {
 // (d + r_beam ≤ r_cyl), else circle–strip(d, r_cyl, r_beam) / (π r_beam²). The energy is given
 // for any d — the share is continuous — so a wall hit that rounding puts a hair outside r_cyl
 // still gets its (about half-beam) energy  (SENSOR-SPEC §7 pinned per surface)
+[[nodiscard]] double cylinder_footprint_fraction(double axis_distance_m, double range_m,
+                                                 double cylinder_radius_m, const BeamParams& beam);
 [[nodiscard]] ReturnEnergy cylinder_return_energy(double axis_distance_m, double range_m,
                                                   double cylinder_radius_m, double incidence_deg,
                                                   double reflectivity, const BeamParams& beam,
