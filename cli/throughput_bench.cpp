@@ -134,6 +134,13 @@ double end_to_end_seconds(const FrameSimulator& simulator, const FlightSetup& se
   return seconds;
 }
 
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const std::size_t middle = values.size() / 2;
+  return values.size() % 2 == 1 ? values[middle] : 0.5 * (values[middle - 1] + values[middle]);
+}
+
 class RoundProgress {
  public:
   explicit RoundProgress(bool enabled) : enabled_(enabled && ::isatty(STDERR_FILENO) != 0) {}
@@ -192,6 +199,7 @@ ThroughputReport measure_throughput(const ThroughputOptions& options) {
       std::min_element(trace_best.begin(), trace_best.end()) - trace_best.begin());
   const TraceApi api = kTraceApis[winner];
   const FrameTracer tracer(setup.embree_scene, api);
+  const FrameTracer traversal(setup.embree_scene, api, {}, TraceWork::traversal_only);
   const FrameSimulator simulator(setup.simulator.params(), setup.embree_scene, api);
   FrameSimulatorParams deterministic = setup.simulator.params();
   deterministic.receiver.noise.on = false;
@@ -204,10 +212,15 @@ ThroughputReport measure_throughput(const ThroughputOptions& options) {
   double points_best = kNever;
   double truth_best = kNever;
   double noise_off_best = kNever;
-  std::vector<double> truth_ratios;  // per round: the words' seconds over words + truth's
+  double traversal_best = kNever;
+  std::vector<double> traversal_shares;  // per round: traversal-only's seconds over end-to-end's
+  std::vector<double> truth_ratios;      // per round: the words' seconds over words + truth's
   tbb::task_arena one_thread(1);
   for (int round = 1; round <= options.repeats; ++round) {
     trace_best[winner] = std::min(trace_best[winner], trace_seconds(tracer, frames, candidates));
+    const double traversal_s = trace_seconds(traversal, frames, candidates);
+    traversal_best = std::min(traversal_best, traversal_s);
+    progress.note("traversal-only", round, options.repeats, rate(traversal_best));
     // The words alone and the words with truth.csv back to back, in turn first, so that their
     // ratio compares runs made under the same conditions (and the same round's noise).
     double words_s = 0.0, truth_s = 0.0;
@@ -229,6 +242,7 @@ ThroughputReport measure_throughput(const ThroughputOptions& options) {
       words();
     }
     truth_ratios.push_back(truth_s > 0.0 ? words_s / truth_s : 0.0);
+    traversal_shares.push_back(words_s > 0.0 ? traversal_s / words_s : 0.0);
     single_thread_best =
         std::min(single_thread_best,
                  one_thread.execute([&] { return end_to_end_seconds(simulator, setup, 1); }));
@@ -266,11 +280,9 @@ ThroughputReport measure_throughput(const ThroughputOptions& options) {
   report.points_pulses_per_s = rate(points_best);
   report.truth_pulses_per_s = rate(truth_best);
   report.noise_off_pulses_per_s = rate(noise_off_best);
-  std::sort(truth_ratios.begin(), truth_ratios.end());
-  const std::size_t middle = truth_ratios.size() / 2;
-  report.truth_ratio_paired = truth_ratios.size() % 2 == 1
-                                  ? truth_ratios[middle]
-                                  : 0.5 * (truth_ratios[middle - 1] + truth_ratios[middle]);
+  report.truth_ratio_paired = median(truth_ratios);
+  report.traversal_only_pulses_per_s = rate(traversal_best);
+  report.traversal_share_paired = median(traversal_shares);
   report.realtime_factor = report.end_to_end_pulses_per_s / scan.prf_hz;
   report.trace_api = api;
   report.peak_rss_mb = peak_rss_mb();

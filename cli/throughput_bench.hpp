@@ -4,6 +4,9 @@
 // frames 0..N−1, the frames `owsim run SCENARIO --frames N` simulates.
 //   trace_only   — the frames' rays built once, then FrameTracer::trace alone over them, for each
 //                  Embree query form (per ray, stream, packets of 8); the fastest form wins;
+//   traversal_only — the same rays through the same BVHs in the winning form with the callbacks
+//                  reduced to recording the hit (TraceWork::traversal_only): Embree's own part;
+//                  its share of end-to-end's time is the physical limit's measure;
 //   end_to_end   — everything `owsim run` does with the winning form (pattern, poses, rays,
 //                  trace, receiver, word packing) writing flight.d64 / flight.hellas into a
 //                  temporary folder, the other outputs off (as on a long flight, --outputs d64);
@@ -50,7 +53,7 @@ struct ThroughputReport {
   // End-to-end with sensor.receiver.noise off (SENSOR-SPEC §11's statistics' cost is end-to-end
   // over this): the deterministic receiver of §7 on the same scene.
   double noise_off_pulses_per_s = 0.0;
-  double realtime_factor = 0.0;      // end_to_end / the sensor's PRF
+  double realtime_factor = 0.0;  // end_to_end / the sensor's PRF
   TraceApi trace_api = TraceApi::stream;
   double peak_rss_mb = 0.0;
   // Not in INTERFACE.md's list, reported beside it:
@@ -62,6 +65,10 @@ struct ThroughputReport {
   // it, the median over the rounds: the cost of truth.csv with the machine's slow drifts (which
   // move the two best rounds apart) paired out.
   double truth_ratio_paired = 0.0;
+  double traversal_only_pulses_per_s = 0.0;
+  // Traversal-only's seconds over end-to-end's (on every thread), each round's pair, the median:
+  // the share of a run that is Embree's traversal.
+  double traversal_share_paired = 0.0;
 };
 
 [[nodiscard]] ThroughputReport measure_throughput(const ThroughputOptions& options);

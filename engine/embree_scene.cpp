@@ -31,6 +31,10 @@ constexpr double kDepthMarginAbsolute_m = 1e-3;
 void conductor_filter(const RTCFilterFunctionNArguments* args) {
   const auto* wires = static_cast<const WireSegments*>(args->geometryUserPtr);
   const TraceContext* context = trace_context(args->context);
+  if (context->traversal_only) {
+    for (unsigned i = 0; i < args->N; ++i) args->valid[i] = 0;
+    return;
+  }
   const ReceiverParams& receiver = context->scene->receiver();
   for (unsigned i = 0; i < args->N; ++i) {
     if (args->valid[i] == 0) continue;

@@ -115,6 +115,7 @@ void intersect_block(TraceApi api, RTCScene scene, TraceContext& context, RTCRay
         rtcIntersect8(valid, scene, &context.rtc, &packet);
         for (unsigned lane = 0; lane < 8 && first + lane < n; ++lane) {
           RTCRayHit& target = rayhits[first + lane];
+          target.ray.tfar = packet.ray.tfar[lane];
           target.hit.geomID = packet.hit.geomID[lane];
           target.hit.primID = packet.hit.primID[lane];
           target.hit.u = packet.hit.u[lane];
@@ -175,6 +176,7 @@ void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const st
     context.cylinder_hits = cylinder_hits;
     context.chunk_begin = block;
     context.max_range_m = max_range;
+    context.traversal_only = work_ == TraceWork::traversal_only;
 
     // Gather the active rays of the block; inactive ones keep empty candidate lists.
     unsigned n = 0;
@@ -191,6 +193,20 @@ void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const st
     // Pass 1: the nearest solid (pole, tree, mesh, ground) along each central ray; the angles
     // and energies of the block's hits in one batch.
     intersect_block(api_, scene_->solids(), context, rayhits.data(), n);
+    if (work_ == TraceWork::traversal_only) {
+      // The wire pass as far as Embree's own solid hit, with the same margin.
+      for (unsigned i = 0; i < n; ++i) {
+        const unsigned id = rayhits[i].ray.id;
+        const bool solid = rayhits[i].hit.geomID != kNoHit;
+        const float wire_tfar =
+            solid ? std::min(tfar, EmbreeScene::wire_search_end(rayhits[i].ray.tfar)) : tfar;
+        set_ray(rayhits[i].ray, rays[id], id, wire_tfar);
+        rayhits[i].hit.geomID = kNoHit;
+        rayhits[i].hit.instID[0] = kNoHit;
+      }
+      intersect_block(api_, scene_->wires(), context, rayhits.data(), n);
+      continue;
+    }
     batch.clear();
     for (unsigned i = 0; i < n; ++i) {
       const RTCRayHit& rayhit = rayhits[i];

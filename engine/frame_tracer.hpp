@@ -23,14 +23,22 @@ enum class TraceApi {
 
 [[nodiscard]] std::string_view to_string(TraceApi api);
 
+// What the tracer does with Embree's hits. `traversal_only` is a yardstick (`owsim bench`): the
+// same two queries against the same BVHs, the callbacks reduced to recording the hit — the
+// cylinders' exact test still decides their hits, the wire filter rejects every segment unread,
+// the wire pass reaches as far as Embree's solid hit — and no candidates. What remains of a
+// pulse's cost is Embree's traversal.
+enum class TraceWork { candidates, traversal_only };
+
 class FrameTracer {
  public:
   static constexpr unsigned kChunk = 256;  // rays per task and per stream call
 
   // `noise`: the receiver's statistics, whose sunlight background each solid hit records
   // (SENSOR-SPEC §11); the default has none.
-  FrameTracer(const EmbreeScene& scene, TraceApi api, const ReceiverNoise& noise = {})
-      : scene_(&scene), api_(api), noise_(noise) {}
+  FrameTracer(const EmbreeScene& scene, TraceApi api, const ReceiverNoise& noise = {},
+              TraceWork work = TraceWork::candidates)
+      : scene_(&scene), api_(api), noise_(noise), work_(work) {}
 
   // Traces rays[i] for every i with active[i] != 0 and fills candidates[i] (cleared first; an
   // inactive pulse — the reference fiber — gets none). Spans must have equal sizes. Runs the
@@ -48,6 +56,7 @@ class FrameTracer {
   const EmbreeScene* scene_;
   TraceApi api_;
   ReceiverNoise noise_;
+  TraceWork work_;
 };
 
 }  // namespace owsim

@@ -26,7 +26,8 @@ struct TraceContext {
   std::span<PulseCandidates> candidates;    // by ray id
   std::span<CylinderRecord> cylinder_hits;  // by ray id − chunk_begin
   unsigned chunk_begin = 0;
-  double max_range_m = 0.0;  // the counter timeout range: nothing beyond it is a candidate
+  double max_range_m = 0.0;     // the counter timeout range: nothing beyond it is a candidate
+  bool traversal_only = false;  // TraceWork::traversal_only: the wire filter rejects unread
 };
 
 [[nodiscard]] inline TraceContext* trace_context(RTCIntersectContext* context) {

@@ -189,6 +189,15 @@ void trace_random_rays(std::uint64_t seed, bool sloped_grid, int ray_count, Cove
                     << static_cast<int>(aimed[i].kind) << "): " << problem;
       if (++failures >= 10) return;
     }
+    // owsim bench's yardstick: the same two queries through the same BVHs, and no candidate —
+    // the wire filter rejects unread, the solid hits are not turned into candidates.
+    std::vector<PulseCandidates> yardstick(rays.size());
+    for (PulseCandidates& pulse : yardstick) pulse.set_solid(Candidate{});
+    FrameTracer(scene, api, {}, TraceWork::traversal_only).trace(rays, active, yardstick);
+    for (const PulseCandidates& pulse : yardstick) {
+      ASSERT_FALSE(pulse.has_solid());
+      ASSERT_TRUE(pulse.wires().empty());
+    }
   }
   coverage.pulses += static_cast<int>(rays.size());
   coverage.grid_scenes += sloped_grid ? 1 : 0;
