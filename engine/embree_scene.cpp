@@ -135,6 +135,7 @@ EmbreeScene::EmbreeScene(const EmbreeDevice& device, const Scene& scene,
     if (attach_triangles(device, scene.meshes[m].mesh, "adding a mesh") != m) {
       throw Error("engine: unexpected mesh geometry id");
     }
+    mesh_frames_.push_back(triangle_frames(scene.meshes[m].mesh));
   }
   if (!scene.cylinders.empty()) attach_cylinders(device);
   attach_terrain(device, dem_grid_from_posts);
@@ -233,21 +234,27 @@ void EmbreeScene::attach_terrain(const EmbreeDevice& device, std::size_t dem_gri
     if (!terrain_grids_->patches().triangles.empty()) {
       terrain_patches_geom_ =
           attach_triangles(device, terrain_grids_->patches(), "adding the terrain");
+      patch_frames_ = triangle_frames(terrain_grids_->patches());
     }
     return;
   }
   terrain_triangles_ = terrain.mesh(region_);
   if (!terrain_triangles_.triangles.empty()) {
     terrain_geom_ = attach_triangles(device, terrain_triangles_, "adding the terrain");
+    terrain_frames_ = triangle_frames(terrain_triangles_);
   }
 }
 
 TriangleHit EmbreeScene::terrain_hit(const RTCHit& hit, const PulseRay& ray) const {
   if (hit.geomID == terrain_patches_geom_) {
-    return exact_mesh_hit(terrain_grids_->patches(), hit.primID, ray.origin_enu_m, ray.dir_enu);
+    return exact_mesh_hit(patch_frames_, hit.primID, ray.origin_enu_m, ray.dir_enu);
   }
   if (terrain_grids_) return terrain_grids_->exact_grid_hit(hit.primID, hit.u, hit.v, ray);
-  return exact_mesh_hit(terrain_triangles_, hit.primID, ray.origin_enu_m, ray.dir_enu);
+  return exact_mesh_hit(terrain_frames_, hit.primID, ray.origin_enu_m, ray.dir_enu);
+}
+
+TriangleHit EmbreeScene::mesh_hit(unsigned mesh, unsigned prim_id, const PulseRay& ray) const {
+  return exact_mesh_hit(mesh_frames_[mesh], prim_id, ray.origin_enu_m, ray.dir_enu);
 }
 
 unsigned EmbreeScene::attach_triangles(const EmbreeDevice& device, const TriangleMesh& mesh,

@@ -70,6 +70,8 @@ class EmbreeScene {
   // The pulse's exact range and normal on the terrain where Embree reported `hit` (on one of
   // the terrain's geometries).
   [[nodiscard]] TriangleHit terrain_hit(const RTCHit& hit, const PulseRay& ray) const;
+  // The pulse's exact range and normal on triangle `prim_id` of mesh `mesh` (its geomID).
+  [[nodiscard]] TriangleHit mesh_hit(unsigned mesh, unsigned prim_id, const PulseRay& ray) const;
   [[nodiscard]] const WireSegments& wire_segments() const { return wire_segments_; }
   // r_wire + r_beam(max range), widened by the float-safety margin.
   [[nodiscard]] double capture_radius_m(const Conductor& conductor) const;
@@ -104,7 +106,12 @@ class EmbreeScene {
   ReceiverParams receiver_;
   double max_range_m_;
   Eigen::AlignedBox2d region_;
-  TriangleMesh terrain_triangles_;             // a flat or grid terrain
+  TriangleMesh terrain_triangles_;  // a flat or grid terrain
+  // Each triangle's edges and normal, computed once (geometry/ray_triangle.hpp): of the flat or
+  // grid terrain, of a DEM's patches, and of each mesh by geomID.
+  std::vector<TriangleFrame> terrain_frames_;
+  std::vector<TriangleFrame> patch_frames_;
+  std::vector<std::vector<TriangleFrame>> mesh_frames_;
   std::optional<TerrainGrids> terrain_grids_;  // a DEM
   WireSegments wire_segments_;
   RTCScene solids_ = nullptr;

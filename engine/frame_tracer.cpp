@@ -56,7 +56,7 @@ void record_solid(const EmbreeScene& scene, const ReceiverNoise& noise, const Pu
   };
   if (geom_id < objects.meshes.size()) {
     const MeshObject& mesh = objects.meshes[geom_id];
-    const TriangleHit hit = exact_mesh_hit(mesh.mesh, prim_id, ray.origin_enu_m, ray.dir_enu);
+    const TriangleHit hit = scene.mesh_hit(geom_id, prim_id, ray);
     set_solid(hit.t, extended_surface_terms(ray, hit.t, hit.normal, mesh.reflectivity, receiver),
               mesh_object_index(objects, geom_id), mesh.surface, hit.normal);
     return;

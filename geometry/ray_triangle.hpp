@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <cstddef>
 #include <optional>
+#include <vector>
 
 #include "geometry/triangle_mesh.hpp"
 
@@ -18,10 +19,26 @@ struct TriangleHit {
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // unit normal, (v1−v0)×(v2−v0) direction
 };
 
+// What the test needs of a triangle that does not depend on the ray: its first corner, edges and
+// unit normal — computed once for a mesh traced many times, with the same bits.
+struct TriangleFrame {
+  Eigen::Vector3d v0, edge1, edge2;  // edge1 = v1 − v0, edge2 = v2 − v0
+  Eigen::Vector3d normal;            // (v1−v0)×(v2−v0), normalised
+};
+
+[[nodiscard]] TriangleFrame triangle_frame(const Eigen::Vector3d& v0, const Eigen::Vector3d& v1,
+                                           const Eigen::Vector3d& v2);
+// Every triangle's frame, by index.
+[[nodiscard]] std::vector<TriangleFrame> triangle_frames(const TriangleMesh& mesh);
+
 // Nearest hit with t ∈ [t_min, t_max], or nullopt.
 [[nodiscard]] std::optional<TriangleHit> intersect_triangle(
     const Eigen::Vector3d& origin, const Eigen::Vector3d& dir, const Eigen::Vector3d& v0,
     const Eigen::Vector3d& v1, const Eigen::Vector3d& v2, double t_min, double t_max);
+[[nodiscard]] std::optional<TriangleHit> intersect_triangle(const Eigen::Vector3d& origin,
+                                                            const Eigen::Vector3d& dir,
+                                                            const TriangleFrame& triangle,
+                                                            double t_min, double t_max);
 
 // The ray's range and normal on the plane of triangle (v0, v1, v2), the normal in the
 // (v1−v0)×(v2−v0) direction: where a float tracer put the ray on this triangle while the double
@@ -35,5 +52,10 @@ struct TriangleHit {
 // plane_hit.
 [[nodiscard]] TriangleHit exact_mesh_hit(const TriangleMesh& mesh, std::size_t index,
                                          const Eigen::Vector3d& origin, const Eigen::Vector3d& dir);
+// The same from the mesh's frames (triangle_frames): the same bits, without the per-hit edges,
+// cross product and square root.
+[[nodiscard]] TriangleHit exact_mesh_hit(const std::vector<TriangleFrame>& frames,
+                                         std::size_t index, const Eigen::Vector3d& origin,
+                                         const Eigen::Vector3d& dir);
 
 }  // namespace owsim

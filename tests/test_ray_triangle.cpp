@@ -189,5 +189,47 @@ TEST(RayTriangle, AgreesWithPlaneThenInsideOverRandomRays) {
   EXPECT_LT(hits, compared - 5000);
 }
 
+// The engine traces meshes through their precomputed frames: every hit, miss and plane fallback
+// must be the vertex path's to the bit (the brute-force tracer takes the vertices).
+TEST(RayTriangle, PrecomputedFramesGiveTheVertexPathsBits) {
+  std::mt19937_64 random(4601);
+  std::uniform_real_distribution<double> coordinate(-500.0, 500.0);
+  std::normal_distribution<double> normal;
+  TriangleMesh mesh;
+  for (int i = 0; i < 300; ++i) {
+    mesh.vertices.emplace_back(coordinate(random), coordinate(random), 0.1 * coordinate(random));
+  }
+  for (std::uint32_t i = 0; i + 2 < 300; i += 3) mesh.triangles.push_back({i, i + 1, i + 2});
+  const std::vector<TriangleFrame> frames = triangle_frames(mesh);
+  ASSERT_EQ(frames.size(), mesh.triangles.size());
+  int hits = 0;
+  for (int draw = 0; draw < 20000; ++draw) {
+    const std::size_t index = static_cast<std::size_t>(draw) % mesh.triangles.size();
+    const auto& triangle = mesh.triangles[index];
+    const Eigen::Vector3d& v0 = mesh.vertices[triangle[0]];
+    const Eigen::Vector3d& v1 = mesh.vertices[triangle[1]];
+    const Eigen::Vector3d& v2 = mesh.vertices[triangle[2]];
+    // Aimed near the triangle (inside about half the time), from up to a kilometre away.
+    const Eigen::Vector3d target = (v0 + v1 + v2) / 3.0 + 0.6 * normal(random) * (v1 - v0);
+    const Eigen::Vector3d origin =
+        target + Eigen::Vector3d(normal(random), normal(random), 2.0 + normal(random)) * 300.0;
+    const Eigen::Vector3d dir = (target - origin).normalized();
+    const auto by_vertices = intersect_triangle(origin, dir, v0, v1, v2, 0.0, 1e9);
+    const auto by_frame = intersect_triangle(origin, dir, frames[index], 0.0, 1e9);
+    ASSERT_EQ(by_vertices.has_value(), by_frame.has_value()) << draw;
+    if (by_vertices) {
+      ++hits;
+      ASSERT_EQ(by_vertices->t, by_frame->t);
+      ASSERT_EQ(by_vertices->normal, by_frame->normal);
+    }
+    const TriangleHit exact_vertices = exact_mesh_hit(mesh, index, origin, dir);
+    const TriangleHit exact_frames = exact_mesh_hit(frames, index, origin, dir);
+    ASSERT_EQ(exact_vertices.t, exact_frames.t);
+    ASSERT_EQ(exact_vertices.normal, exact_frames.normal);
+  }
+  EXPECT_GT(hits, 4000);
+  EXPECT_LT(hits, 16000);
+}
+
 }  // namespace
 }  // namespace owsim
