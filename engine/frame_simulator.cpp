@@ -15,6 +15,8 @@ namespace {
 // Lines a task builds, traces and receives in one go (a chunk of ~512 pulses: its rays and
 // candidates stay in the core's cache between the three steps).
 constexpr int kLinesPerTask = 4;
+// Pulses whose first-return range-noise draws are made together, ahead of their receiver pass.
+constexpr std::size_t kNoiseDrawsAhead = 256;
 
 }  // namespace
 
@@ -64,7 +66,8 @@ void FrameSimulator::receive_range(FrameResult& out, std::span<const PulseCandid
   WeatherCandidates weathered;
   PathBusyIntervals busy;
   // Pulse k's returns, by the cheapest path that gives them.
-  const auto receive_pulse = [&](int k, std::size_t index, PulseReturns& returns) {
+  const auto receive_pulse = [&](int k, std::size_t index, PulseReturns& returns,
+                                 const PhiloxBlock* first_range_noise) {
     if (out.active[index] == 0) {
       returns = PulseReturns{};
       returns.counter1 =
@@ -77,8 +80,10 @@ void FrameSimulator::receive_range(FrameResult& out, std::span<const PulseCandid
     // default PulseNoise is §7's deterministic receiver.
     PulseNoise noise;
     if (noise_.on()) {
-      noise = {&noise_, met.has_solid() ? met.solid_background() : noise_.sky_background(), {}};
+      noise.model = &noise_;
+      noise.background = met.has_solid() ? met.solid_background() : noise_.sky_background();
     }
+    noise.first_range_noise = first_range_noise;
     if (!weather_.empty()) {
       const std::span<Candidate> weathered_met =
           weathered_candidates(weather_, out.rays[index], met, receiver, weathered, &busy);
@@ -97,12 +102,24 @@ void FrameSimulator::receive_range(FrameResult& out, std::span<const PulseCandid
     }
     select_returns(met.gather(gathered), receiver, params_.seed, out.frame, k, returns, noise);
   };
-  for (int k = begin; k < end; ++k) {
-    const auto index = static_cast<std::size_t>(k);
-    PulseReturns& returns = out.returns[index];
-    receive_pulse(k, index, returns);
-    // While the returns are in registers: no pass over the 88-byte records later.
-    out.object_returns[index] = object_return_bits(returns, named_objects_);
+  // The first return's range-noise draws of a run of pulses at once, on vector lanes (the same
+  // bits as one at a time: geometry/keyed_random.hpp random_blocks).
+  const bool range_noise = range_noise_sigma_m(receiver) != 0.0;
+  std::array<PhiloxBlock, kNoiseDrawsAhead> first_range_noise;
+  for (int run = begin; run < end; run += static_cast<int>(kNoiseDrawsAhead)) {
+    const int run_end = std::min(end, run + static_cast<int>(kNoiseDrawsAhead));
+    if (range_noise) {
+      random_blocks(params_.seed, out.frame, run, RandomPurpose::range_noise_first,
+                    std::span(first_range_noise.data(), static_cast<std::size_t>(run_end - run)));
+    }
+    for (int k = run; k < run_end; ++k) {
+      const auto index = static_cast<std::size_t>(k);
+      PulseReturns& returns = out.returns[index];
+      receive_pulse(k, index, returns,
+                    range_noise ? &first_range_noise[static_cast<std::size_t>(k - run)] : nullptr);
+      // While the returns are in registers: no pass over the 88-byte records later.
+      out.object_returns[index] = object_return_bits(returns, named_objects_);
+    }
   }
 }
 

@@ -1,8 +1,11 @@
 #include "geometry/keyed_random.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <numbers>
+
+#include "geometry/vector_clones.hpp"
 
 namespace owsim {
 namespace {
@@ -149,6 +152,58 @@ PhiloxBlock normal_extra_block(const RandomKey& key, std::uint32_t index) {
   return philox4x32_10(counter, philox_key(key.seed ^ (index * kExtraKeyStep)));
 }
 
+namespace {
+
+constexpr std::size_t kLanes = 64;  // pulses per pass over the lanes
+
+// Philox4x32-10 on each lane of four word arrays, in place (philox4x32_10's rounds, the lanes
+// independent): GCC turns the 32 × 32 → 64-bit products into vector multiplies.
+OWSIM_AVX2_CLONE void philox_lanes(std::size_t n, std::uint32_t* __restrict w0,
+                                   std::uint32_t* __restrict w1, std::uint32_t* __restrict w2,
+                                   std::uint32_t* __restrict w3, std::uint32_t key0,
+                                   std::uint32_t key1) {
+  for (std::size_t i = 0; i < n; ++i) {
+    std::uint32_t c0 = w0[i], c1 = w1[i], c2 = w2[i], c3 = w3[i];
+    std::uint32_t k0 = key0, k1 = key1;
+    for (int round = 0; round < 10; ++round) {
+      const std::uint64_t product0 = static_cast<std::uint64_t>(kMultiplier0) * c0;
+      const std::uint64_t product1 = static_cast<std::uint64_t>(kMultiplier1) * c2;
+      const auto hi0 = static_cast<std::uint32_t>(product0 >> 32);
+      const auto hi1 = static_cast<std::uint32_t>(product1 >> 32);
+      c0 = hi1 ^ c1 ^ k0;
+      c1 = static_cast<std::uint32_t>(product1);
+      c2 = hi0 ^ c3 ^ k1;
+      c3 = static_cast<std::uint32_t>(product0);
+      k0 += kWeyl0;
+      k1 += kWeyl1;
+    }
+    w0[i] = c0;
+    w1[i] = c1;
+    w2[i] = c2;
+    w3[i] = c3;
+  }
+}
+
+}  // namespace
+
+void random_blocks(std::uint64_t seed, std::int64_t frame, std::int64_t first_pulse,
+                   RandomPurpose purpose, std::span<PhiloxBlock> out) {
+  const std::array<std::uint32_t, 2> key = philox_key(seed);
+  alignas(64) std::uint32_t words[4][kLanes];
+  for (std::size_t done = 0; done < out.size(); done += kLanes) {
+    const std::size_t n = std::min(kLanes, out.size() - done);
+    for (std::size_t i = 0; i < n; ++i) {
+      const PhiloxBlock counter =
+          counter_of({seed, frame, first_pulse + static_cast<std::int64_t>(done + i), purpose});
+      for (std::size_t w = 0; w < 4; ++w) words[w][i] = counter[w];
+    }
+    philox_lanes(n, words[0], words[1], words[2], words[3], key[0], key[1]);
+    for (std::size_t i = 0; i < n; ++i) {
+      out[done + i] = {words[0][i], words[1][i], words[2][i], words[3][i]};
+    }
+  }
+}
+
 double uniform01(const RandomKey& key) {
   const PhiloxBlock block = random_block(key);
   return unit_interval(block[0], block[1]);
@@ -156,10 +211,12 @@ double uniform01(const RandomKey& key) {
 
 double uniform_pm1(const RandomKey& key) { return 2.0 * uniform01(key) - 1.0; }
 
-double standard_normal(const RandomKey& key) {
+double standard_normal(const RandomKey& key) { return standard_normal(key, random_block(key)); }
+
+double standard_normal(const RandomKey& key, const PhiloxBlock& first) {
   const Ziggurat& z = ziggurat();
   ExtraBlocks extra(key);
-  for (PhiloxBlock block = random_block(key);; block = extra.next()) {
+  for (PhiloxBlock block = first;; block = extra.next()) {
     // Words 0-1: the top 53 bits are the uniform, bits 0-7 the strip, bit 8 the sign.
     const std::uint64_t bits = join(block[0], block[1]);
     const auto strip = static_cast<std::size_t>(bits & 0xFFu);

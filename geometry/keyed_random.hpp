@@ -20,6 +20,7 @@
 // at most 4.4e-16.
 #include <array>
 #include <cstdint>
+#include <span>
 
 namespace owsim {
 
@@ -63,5 +64,14 @@ struct RandomKey {
 [[nodiscard]] double uniform_pm1(const RandomKey& key);
 // Standard normal N(0, 1), by the ziggurat above.
 [[nodiscard]] double standard_normal(const RandomKey& key);
+// The same draw when random_block(key) is already known (random_blocks below): `first` must be
+// that block. The same value, bit for bit.
+[[nodiscard]] double standard_normal(const RandomKey& key, const PhiloxBlock& first);
+
+// random_block of the keys (seed, frame, first_pulse + i, purpose) for every i < out.size(), the
+// same bits, computed for many pulses at once over vector lanes (AVX2 where the CPU has it): the
+// per-pulse draws of a block of pulses, batched.
+void random_blocks(std::uint64_t seed, std::int64_t frame, std::int64_t first_pulse,
+                   RandomPurpose purpose, std::span<PhiloxBlock> out);
 
 }  // namespace owsim

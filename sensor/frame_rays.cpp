@@ -8,7 +8,7 @@
 #include "sensor/fiber_layout.hpp"
 #include "sensor/motor_encoder.hpp"
 #include "sensor/scan_params_check.hpp"
-#include "sensor/vector_clones.hpp"
+#include "geometry/vector_clones.hpp"
 
 namespace owsim {
 namespace {
@@ -26,7 +26,7 @@ struct Quadratic {
         p2(2.0 * at_0 - 4.0 * at_half + 2.0 * at_1) {}
 };
 
-// The chunk arithmetic below is compiled for AVX2 as well (sensor/vector_clones.hpp).
+// The chunk arithmetic below is compiled for AVX2 as well (geometry/vector_clones.hpp).
 
 constexpr int kMaxChunk = 64;
 

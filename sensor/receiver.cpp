@@ -110,14 +110,19 @@ bool registers(const Candidate& c, const ReceiverParams& p) {
 // SENSOR-SPEC §1 noise and counter for the chosen candidates (chosen[1] may be null), written
 // into `out` whose count is 0 and counters the timeout; a counter at the timeout is no return.
 void record_returns(const Candidate* const (&chosen)[2], const ReceiverParams& p,
-                    std::uint64_t seed, std::int64_t frame, int pulse, PulseReturns& out) {
+                    std::uint64_t seed, std::int64_t frame, int pulse, PulseReturns& out,
+                    const PhiloxBlock* first_range_noise) {
   const double sigma = range_noise_sigma_m(p);
   const RangeCounter counters(p.counter);
   constexpr RandomPurpose kPurpose[2] = {RandomPurpose::range_noise_first,
                                          RandomPurpose::range_noise_second};
   for (int i = 0; i < 2 && chosen[i] != nullptr; ++i) {
     const Candidate& c = *chosen[i];
-    const double normal = sigma == 0.0 ? 0.0 : standard_normal({seed, frame, pulse, kPurpose[i]});
+    const RandomKey key{seed, frame, pulse, kPurpose[i]};
+    const double normal = sigma == 0.0 ? 0.0
+                          : i == 0 && first_range_noise != nullptr
+                              ? standard_normal(key, *first_range_noise)
+                              : standard_normal(key);
     const double range = noisy_range_m(c.range_m, sigma, normal);
     const std::uint16_t counter = counters.counter(range);
     if (counter >= p.counter.timeout_counts) continue;
@@ -192,7 +197,7 @@ void select_noisy_returns(std::span<Candidate> candidates, const ReceiverParams&
     } else {
       choose_returns(registered, p, chosen);
     }
-    record_returns(chosen, p, seed, frame, pulse, out);
+    record_returns(chosen, p, seed, frame, pulse, out, noise.first_range_noise);
     return;
   }
   std::array<Candidate, kMaxNoisyCandidates + 2> pool;
@@ -209,7 +214,7 @@ void select_noisy_returns(std::span<Candidate> candidates, const ReceiverParams&
     if (second >= 0.0) pool[n++] = false_return(second, p);
   }
   choose_returns(std::span<Candidate>(pool.data(), n), p, chosen);
-  record_returns(chosen, p, seed, frame, pulse, out);
+  record_returns(chosen, p, seed, frame, pulse, out, noise.first_range_noise);
 }
 
 bool noisy(const PulseNoise& noise) { return noise.model != nullptr && noise.model->on(); }
@@ -243,7 +248,8 @@ void select_returns(std::span<Candidate> candidates, const ReceiverParams& p, st
     } else if (a_in || b_in) {
       chosen[0] = a_in ? &a : &b;
     }
-    if (chosen[0] != nullptr) record_returns(chosen, p, seed, frame, pulse, out);
+    if (chosen[0] != nullptr)
+      record_returns(chosen, p, seed, frame, pulse, out, noise.first_range_noise);
     return;
   }
   // SENSOR-SPEC §7 pinned return selection.
@@ -253,7 +259,7 @@ void select_returns(std::span<Candidate> candidates, const ReceiverParams& p, st
   if (detected.empty()) return;
   const Candidate* chosen[2] = {nullptr, nullptr};
   choose_returns(detected, p, chosen);
-  record_returns(chosen, p, seed, frame, pulse, out);
+  record_returns(chosen, p, seed, frame, pulse, out, noise.first_range_noise);
 }
 
 void select_single_return(const Candidate& candidate, const ReceiverParams& p, std::uint64_t seed,
@@ -268,7 +274,7 @@ void select_single_return(const Candidate& candidate, const ReceiverParams& p, s
   // One surface: nothing to sort; either rule keeps it if it registers.
   if (!registers(candidate, p)) return;
   const Candidate* const chosen[2] = {&candidate, nullptr};
-  record_returns(chosen, p, seed, frame, pulse, out);
+  record_returns(chosen, p, seed, frame, pulse, out, noise.first_range_noise);
 }
 
 std::uint16_t reference_counter(std::uint16_t reference_counts, const ReceiverParams& p,

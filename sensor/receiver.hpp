@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <span>
 
+#include "geometry/keyed_random.hpp"
 #include "sensor/atmosphere.hpp"
 #include "sensor/beam.hpp"
 #include "sensor/range_counter.hpp"
@@ -99,6 +100,10 @@ struct PulseNoise {
   const ReceiverNoise* model = nullptr;  // null or off: deterministic, no false trigger
   double background = 0.0;               // b of the pulse (ReceiverNoise::solid/sky_background)
   std::span<const BusyInterval> busy;    // fog busy intervals on the pulse's path, nearest first
+  // random_block of the pulse's first-return range noise key (seed, frame, pulse,
+  // range_noise_first) when the caller drew it ahead with a block of pulses (random_blocks);
+  // null: drawn here. The same normal either way (SENSOR-SPEC §1).
+  const PhiloxBlock* first_range_noise = nullptr;
 };
 
 // The most candidates select_returns takes with a noise model (every wire, the solid, the fog's).

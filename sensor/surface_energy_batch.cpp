@@ -3,7 +3,7 @@
 #include "geometry/error.hpp"
 #include "sensor/reflectivity.hpp"
 #include "sensor/return_energy.hpp"
-#include "sensor/vector_clones.hpp"
+#include "geometry/vector_clones.hpp"
 
 namespace owsim {
 namespace {

@@ -267,5 +267,28 @@ TEST(KeyedRandom, NormalTailPathHasTheTruncatedNormalShape) {
   EXPECT_NEAR(tail_moments.variance, variance, 5.0 * variance * std::sqrt(6.19 / k));
 }
 
+// The receiver draws a block of pulses' first-return range noise ahead, on vector lanes: every
+// block must be random_block's, for any run length, frame and pulse (the pulse's high bits and a
+// negative frame included), and the normal from a given block the key's own.
+TEST(KeyedRandom, BlocksOfPulsesAreEachPulsesOwnBlock) {
+  for (const std::int64_t frame :
+       {std::int64_t{0}, std::int64_t{77}, std::int64_t{-3}, std::int64_t{1} << 40}) {
+    for (const std::int64_t first :
+         {std::int64_t{0}, std::int64_t{5000}, (std::int64_t{1} << 32) - 100}) {
+      for (const std::size_t count :
+           {std::size_t{1}, std::size_t{63}, std::size_t{64}, std::size_t{65}, std::size_t{300}}) {
+        std::vector<PhiloxBlock> blocks(count);
+        random_blocks(0xABCDEF0123456789u, frame, first, RandomPurpose::range_noise_first, blocks);
+        for (std::size_t i = 0; i < count; ++i) {
+          const RandomKey key{0xABCDEF0123456789u, frame, first + static_cast<std::int64_t>(i),
+                              RandomPurpose::range_noise_first};
+          ASSERT_EQ(blocks[i], random_block(key)) << frame << " " << first << " " << i;
+          ASSERT_EQ(standard_normal(key, blocks[i]), standard_normal(key));
+        }
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace owsim
