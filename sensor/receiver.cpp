@@ -266,6 +266,18 @@ void select_single_return(const Candidate& candidate, const ReceiverParams& p, s
                           std::int64_t frame, int pulse, PulseReturns& out,
                           const PulseNoise& noise) {
   if (noisy(noise)) {
+    // Most pulses: no false trigger in the pulse's whole group (select_noisy_returns' first test),
+    // so the echo alone decides — without the general path's pool and trigger search.
+    if (noise.model->group_has_no_trigger(noise.background, seed, frame, pulse)) {
+      set_no_returns(p, out);
+      if (!noise.model->echo_registers(candidate.energy_rel, candidate.range_m, noise.background,
+                                       seed, frame, pulse, candidate.object_index)) {
+        return;
+      }
+      const Candidate* const chosen[2] = {&candidate, nullptr};
+      record_returns(chosen, p, seed, frame, pulse, out, noise.first_range_noise);
+      return;
+    }
     Candidate copy = candidate;
     select_noisy_returns(std::span<Candidate>(&copy, 1), p, seed, frame, pulse, noise, out);
     return;

@@ -204,6 +204,11 @@ bool ReceiverNoise::echo_registers(double energy_rel, double range_m, double bac
   return u <= standard_normal_cdf(margin / s);
 }
 
+bool ReceiverNoise::group_has_no_trigger(double background, std::uint64_t seed, std::int64_t frame,
+                                         int pulse) const {
+  return first_exponentials_minimum(seed, frame, pulse).minimum > max_gate_ && background <= max_b_;
+}
+
 double ReceiverNoise::next_false_trigger_m(double from_m, double background,
                                            std::span<const BusyInterval> busy, std::uint64_t seed,
                                            std::int64_t frame, int pulse,

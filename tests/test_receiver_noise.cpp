@@ -296,6 +296,46 @@ TEST(ReceiverNoise, SelectReturnsMergesFalseTriggersWithEchoes) {
   EXPECT_EQ(plain.returns[0].object_index, 4u);
 }
 
+// select_single_return decides most pulses by the group's cached bound (no false trigger anywhere
+// in the pulse's 128-pulse group) and the echo alone: it must give select_returns' general path's
+// returns for every pulse — through the noise levels where groups often do and often do not hold a
+// trigger, echoes near and far from the threshold, and the first return's noise drawn ahead.
+TEST(ReceiverNoise, TheSingleCandidatesShortcutIsTheGeneralPath) {
+  int shortcut = 0, general = 0, registered = 0;
+  for (const double noise_at_1km : {0.0002, 0.0006, 0.0012}) {
+    ReceiverParams p;
+    p.threshold = 0.005;
+    p.noise.noise_at_1km = noise_at_1km;
+    const ReceiverNoise noise = receiver_noise(p);
+    for (int pulse = 0; pulse < 4000; ++pulse) {
+      const double range = 200.0 + 0.2 * pulse;
+      const double energy = p.threshold * (0.6 + 0.0002 * (pulse % 4000));
+      const Candidate echo{range, energy, 12.0, 3, static_cast<std::uint8_t>(SurfaceClass::ground)};
+      const PhiloxBlock first = random_block({9, 2, pulse, RandomPurpose::range_noise_first});
+      PulseNoise with_block{&noise, 0.0, {}, &first};
+      PulseReturns single, reference;
+      select_single_return(echo, p, 9, 2, pulse, single, with_block);
+      Candidate copy = echo;
+      select_returns(std::span<Candidate>(&copy, 1), p, 9, 2, pulse, reference,
+                     PulseNoise{&noise, 0.0, {}});
+      ASSERT_EQ(single.count, reference.count) << pulse;
+      ASSERT_EQ(single.counter1, reference.counter1) << pulse;
+      ASSERT_EQ(single.counter2, reference.counter2) << pulse;
+      for (int r = 0; r < single.count; ++r) {
+        ASSERT_EQ(single.returns[r].range_m, reference.returns[r].range_m);
+        ASSERT_EQ(single.returns[r].surface, reference.returns[r].surface);
+      }
+      registered += single.count > 0;
+      (noise.group_has_no_trigger(0.0, 9, 2, pulse) ? shortcut : general) += 1;
+    }
+  }
+  // Both paths were taken, and the echoes near the threshold both registered and did not.
+  EXPECT_GT(shortcut, 1000);
+  EXPECT_GT(general, 1000);
+  EXPECT_GT(registered, 1000);
+  EXPECT_LT(registered, 11000);
+}
+
 TEST(ReceiverDefaults, MeetTheSpecsTargets) {
   // SENSOR-SPEC §11 "Defaults": (b) night, empty sky ≤ 1e-4 false returns per pulse; (c) sun at
   // the zenith, ground of reflectivity 0.2 seen from 100 m ≤ 1e-3 (the triggers behind its echo);
