@@ -5,8 +5,8 @@
 #include <string>
 
 #include "cli/commands.hpp"
-#include "cli/option_checks.hpp"
 #include "cli/mpi_job.hpp"
+#include "cli/option_checks.hpp"
 #include "cli/progress_line.hpp"
 #include "distributed/distributed_run.hpp"
 #include "owsim/simulation.hpp"
@@ -98,7 +98,7 @@ void add_run_command(CLI::App& app, CommandResult& /*result*/) {
       ->check(seed_number());
   command->add_option("--outputs", options->outputs,
                       "comma list of d64, points (or csv, las, ply on their own), trajectory, "
-                      "summary, truth, quicklook (default: all)");
+                      "summary, truth, quicklook, mcap (default: all but mcap)");
   command->add_flag("--no-noise", options->simulation.no_noise,
                     "range noise and receiver noise off");
   command->add_flag("--resume", options->run.resume,

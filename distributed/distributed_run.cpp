@@ -157,6 +157,16 @@ RunReport run_distributed(Communicator& comm, const Simulation& simulation,
   const FlightSetup& setup = simulation.setup();
   const ScanParams& scan = setup.scenario.scan;
   const bool root = comm.rank() == kRoot;
+  // flight.mcap's chunks follow one another in one process's writer (io/run/flight_mcap.hpp): a
+  // distributed run does not place them. Every process meets this; process 0 says it.
+  if (options.outputs.contains(OutputKind::mcap)) {
+    if (root) {
+      throw JobError(
+          "--outputs: mcap (flight.mcap) is written by one process: run it without "
+          "mpirun");
+    }
+    throw ReportedElsewhere();
+  }
   FlightOutputOptions output_options =
       run_output_options(setup, simulation.run_fingerprint(options), options);
   output_options.scenario = simulation.scenario_as_flown();

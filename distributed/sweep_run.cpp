@@ -113,7 +113,9 @@ SweepReport run_sweep(Communicator& comm, const SweepSpec& spec, const SweepRunO
       RunOptions run;
       run.out = directory;
       run.outputs = outputs;
-      run.resume = options.resume;
+      // flight.mcap is not continued from a checkpoint (io/run/flight_mcap.hpp): an unfinished
+      // member that writes it starts over, which gives the same bytes.
+      run.resume = options.resume && !outputs.contains(OutputKind::mcap);
       const RunReport member_report = simulation.run(run);
       ++totals[0];
       totals[2] += static_cast<std::uint64_t>(member_report.frames - member_report.first_frame) *

@@ -97,6 +97,7 @@ FlightOutputOptions flight_output_options(const FlightSetup& setup,
   FlightOutputOptions output_options;
   output_options.directory = out ? *out : std::filesystem::path("out") / setup.scenario.name;
   output_options.outputs = outputs;
+  output_options.sensor_mount = setup.scenario.mount;
   if (outputs.contains(OutputKind::truth)) output_options.truth = &setup.truth_model();
   output_options.map_region = setup.flown.merged(scene_extent(setup.scene));
   output_options.map_region.min().array() -= 50.0;  // a margin around what was flown and built
@@ -110,6 +111,11 @@ FlightOutputOptions run_output_options(const FlightSetup& setup, const nlohmann:
     throw Error(setup.scenario.name +
                 ": resume: a scenario built in code keeps no checkpoint; open it from a file or "
                 "from YAML text to resume its runs");
+  }
+  if (options.resume && options.outputs.contains(OutputKind::mcap)) {
+    throw input_error("--resume",
+                      "flight.mcap (output mcap) cannot be continued from a "
+                      "checkpoint; run without --resume, or without mcap");
   }
   FlightOutputOptions output_options = flight_output_options(setup, options.out, options.outputs);
   output_options.checkpoint_run = fingerprint;

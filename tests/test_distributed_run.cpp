@@ -70,6 +70,23 @@ TEST(DistributedRun, OneProcessWritesTheBytesOfARun) {
   expect_same_outputs(work.path() / "run", work.path() / "placed");
 }
 
+TEST(DistributedRun, RefusesFlightMcapInOneLineBeforeWritingAnything) {
+  test::TempDir work;
+  const Simulation simulation = corridor(2);
+  std::unique_ptr<Communicator> comm = single_process_communicator();
+  RunOptions run;
+  run.out = work.path() / "run";
+  run.outputs = parse_output_list("d64,mcap");
+  try {
+    static_cast<void>(run_distributed(*comm, simulation, run));
+    FAIL() << "no error";
+  } catch (const JobError& error) {
+    EXPECT_STREQ(error.what(),
+                 "--outputs: mcap (flight.mcap) is written by one process: run it without mpirun");
+  }
+  EXPECT_FALSE(std::filesystem::exists(work.path() / "run"));
+}
+
 TEST(DistributedRun, ResumesTheCheckpointOfAOneProcessRun) {
   test::TempDir work;
   const Simulation simulation = corridor(30);

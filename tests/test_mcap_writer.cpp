@@ -289,6 +289,68 @@ TEST(McapWriter, BuffersStayBoundedOverManyMessages) {
   writer.finish();
 }
 
+TEST(McapWriter, AChunkBuiltApartIsPlacedAsTheWriterWouldHaveWrittenIt) {
+  // The same messages: through write_message with a chunk closed after each pair, and as chunks
+  // built apart (as on other threads) and placed by write_chunk.
+  const Bytes payload(200, 0x33);
+  const auto open = [&](McapSink& sink, std::uint16_t& a, std::uint16_t& b) {
+    McapWriter writer(sink, "chunks.mcap");
+    const auto schema = writer.add_schema("pkg/msg/T", "ros2msg", "uint8[] a\n");
+    a = writer.add_channel(schema, "/a", "cdr");
+    b = writer.add_channel(schema, "/b", "cdr");
+    writer.write_message(b, 5, payload);
+    writer.close_chunk();
+    return writer;
+  };
+  MemorySink direct_sink, placed_sink;
+  std::uint16_t a = 0, b = 0;
+  McapWriter direct = open(direct_sink, a, b);
+  McapWriter placed = open(placed_sink, a, b);
+  McapChunk chunk;
+  for (std::uint32_t pair = 0; pair < 3; ++pair) {
+    direct.write_message(a, 10 + pair, payload);
+    direct.write_message(b, 10 + pair, payload);
+    direct.close_chunk();
+    chunk.clear();
+    chunk.add_message(a, pair, 10 + pair, 10 + pair, payload);
+    chunk.add_message(b, pair + 1, 10 + pair, 10 + pair, payload);
+    chunk.finish();
+    placed.write_chunk(chunk);
+  }
+  direct.finish();
+  placed.finish();
+  EXPECT_EQ(placed.chunks_written(), 4u);
+  EXPECT_EQ(placed.messages_written(), 7u);
+  EXPECT_EQ(placed_sink.data, direct_sink.data);
+}
+
+TEST(McapWriter, RefusesAChunkThatDoesNotContinueItsChannels) {
+  MemorySink sink;
+  McapWriter writer(sink, "gap.mcap");
+  const auto channel = writer.add_channel(0, "/a", "cdr");
+  const Bytes payload{1};
+  McapChunk chunk;
+  chunk.add_message(channel, 1, 0, 0, payload);  // message 0 was never written
+  try {
+    writer.write_chunk(chunk);
+    FAIL() << "no error";
+  } catch (const Error& error) {
+    EXPECT_STREQ(error.what(), "gap.mcap: a chunk that was not finished");
+  }
+  chunk.finish();
+  try {
+    writer.write_chunk(chunk);
+    FAIL() << "no error";
+  } catch (const Error& error) {
+    EXPECT_STREQ(error.what(),
+                 "gap.mcap: a chunk whose messages on channel 1 start at sequence 1, not 0");
+  }
+  EXPECT_THROW(chunk.add_message(channel, 2, 0, 0, payload), Error);  // finished
+  McapChunk gap;
+  gap.add_message(channel, 0, 0, 0, payload);
+  EXPECT_THROW(gap.add_message(channel, 2, 0, 0, payload), Error);
+}
+
 TEST(McapWriter, RejectsMessagesOnUnknownChannelsAndWritesAfterFinish) {
   MemorySink sink;
   McapWriter writer(sink, "bad.mcap");

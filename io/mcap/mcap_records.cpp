@@ -74,6 +74,11 @@ std::uint32_t crc32(std::uint32_t crc, std::span<const unsigned char> bytes) {
   return static_cast<std::uint32_t>(::crc32_z(crc, bytes.data(), bytes.size()));
 }
 
+std::uint32_t crc32_combine(std::uint32_t crc_a, std::uint32_t crc_b, std::uint64_t length_b) {
+  static_assert(sizeof(z_off_t) >= 8, "zlib's offsets must hold a file's length");
+  return static_cast<std::uint32_t>(::crc32_combine(crc_a, crc_b, static_cast<z_off_t>(length_b)));
+}
+
 void append_header(Bytes& out, std::string_view profile, std::string_view library) {
   const std::size_t at = begin_record(out, Opcode::header);
   put_string(out, profile);

@@ -35,6 +35,9 @@ enum class Opcode : std::uint8_t {
 
 // CRC-32 (ISO-HDLC, zlib's) of `bytes` continuing `crc` (0 to start).
 [[nodiscard]] std::uint32_t crc32(std::uint32_t crc, std::span<const unsigned char> bytes);
+// The CRC-32 of A then B from the CRC of A, the CRC of B and B's length (zlib's crc32_combine).
+[[nodiscard]] std::uint32_t crc32_combine(std::uint32_t crc_a, std::uint32_t crc_b,
+                                          std::uint64_t length_b);
 
 void append_header(Bytes& out, std::string_view profile, std::string_view library);
 void append_schema(Bytes& out, std::uint16_t id, std::string_view name, std::string_view encoding,

@@ -1,7 +1,5 @@
 #include "io/mcap/mcap_writer.hpp"
 
-#include <zstd.h>
-
 #include <algorithm>
 #include <limits>
 #include <utility>
@@ -10,34 +8,6 @@
 #include "owsim/version.hpp"
 
 namespace owsim {
-
-// zstd's compression context, reused from chunk to chunk, and its output buffer.
-class McapWriter::Compressor {
- public:
-  explicit Compressor(int level) : context_(ZSTD_createCCtx()), level_(level) {
-    if (context_ == nullptr) throw Error("cannot create a zstd compression context");
-  }
-  Compressor(const Compressor&) = delete;
-  Compressor& operator=(const Compressor&) = delete;
-  ~Compressor() { ZSTD_freeCCtx(context_); }
-
-  // The compressed bytes of `records`, valid until the next call.
-  std::span<const unsigned char> compress(std::span<const unsigned char> records) {
-    output_.resize(ZSTD_compressBound(records.size()));
-    const std::size_t size = ZSTD_compressCCtx(context_, output_.data(), output_.size(),
-                                               records.data(), records.size(), level_);
-    if (ZSTD_isError(size)) {
-      throw Error(std::string("zstd compression failed: ") + ZSTD_getErrorName(size));
-    }
-    return std::span<const unsigned char>(output_).first(size);
-  }
-  [[nodiscard]] std::size_t capacity() const { return output_.capacity(); }
-
- private:
-  ZSTD_CCtx* context_;
-  int level_;
-  mcap::Bytes output_;
-};
 
 class McapWriter::FileSink final : public McapSink {
  public:
@@ -64,13 +34,10 @@ McapWriter::McapWriter(std::unique_ptr<McapSink> owned, McapSink* borrowed, std:
     : owned_sink_(std::move(owned)),
       sink_(owned_sink_ ? owned_sink_.get() : borrowed),
       name_(std::move(name)),
-      options_(options) {
+      options_(options),
+      chunk_(options.compression, options.zstd_level) {
   if (options_.chunk_size == 0) fail("the chunk size must be positive");
-  if (options_.compression == McapCompression::zstd) {
-    compressor_ = std::make_unique<Compressor>(options_.zstd_level);
-  }
   if (options_.library.empty()) options_.library = std::string("owsim ") + version_string;
-  chunk_.reserve(options_.chunk_size);
   record_.assign(mcap::kMagic.begin(), mcap::kMagic.end());
   mcap::append_header(record_, options_.profile, options_.library);
   emit(record_);
@@ -96,7 +63,7 @@ std::uint16_t McapWriter::add_schema(std::string_view name, std::string_view enc
   require_open("a schema");
   if (schema_count_ == std::numeric_limits<std::uint16_t>::max()) fail("too many schemas");
   const auto id = static_cast<std::uint16_t>(schema_count_ + 1);
-  mcap::append_schema(chunk_, id, name, encoding, data);
+  chunk_.add_schema(id, name, encoding, data);
   mcap::append_schema(schemas_, id, name, encoding, data);
   schema_count_ = id;
   return id;
@@ -109,80 +76,89 @@ std::uint16_t McapWriter::add_channel(std::uint16_t schema_id, std::string_view 
   if (schema_id > schema_count_) {
     fail("channel " + std::string(topic) + ": no schema " + std::to_string(schema_id));
   }
-  if (channel_states_.size() == std::numeric_limits<std::uint16_t>::max()) {
+  if (channel_messages_.size() == std::numeric_limits<std::uint16_t>::max()) {
     fail("too many channels");
   }
-  const auto id = static_cast<std::uint16_t>(channel_states_.size() + 1);
-  mcap::append_channel(chunk_, id, schema_id, topic, message_encoding, metadata);
+  const auto id = static_cast<std::uint16_t>(channel_messages_.size() + 1);
+  chunk_.add_channel(id, schema_id, topic, message_encoding, metadata);
   mcap::append_channel(channels_, id, schema_id, topic, message_encoding, metadata);
-  channel_states_.emplace_back();
+  channel_messages_.push_back(0);
   return id;
 }
 
 void McapWriter::write_message(std::uint16_t channel_id, std::uint64_t log_time_ns,
                                std::uint64_t publish_time_ns, std::span<const unsigned char> data) {
   require_open("a message");
-  if (channel_id == 0 || channel_id > channel_states_.size()) {
+  if (channel_id == 0 || channel_id > channel_messages_.size()) {
     fail("a message on channel " + std::to_string(channel_id) + ", which was never added");
   }
-  ChannelState& channel = channel_states_[channel_id - 1];
-  channel.chunk_index.emplace_back(log_time_ns, chunk_.size());
   // The sequence counts modulo 2^32, as the field's width allows.
-  mcap::append_message(chunk_, channel_id, static_cast<std::uint32_t>(channel.message_count),
-                       log_time_ns, publish_time_ns, data);
-  ++channel.message_count;
-  ++message_count_;
-  if (!chunk_has_messages_) {
-    chunk_start_time_ = chunk_end_time_ = log_time_ns;
-    chunk_has_messages_ = true;
-  }
-  chunk_start_time_ = std::min(chunk_start_time_, log_time_ns);
-  chunk_end_time_ = std::max(chunk_end_time_, log_time_ns);
-  if (message_count_ == 1) start_time_ = end_time_ = log_time_ns;
+  std::uint64_t& count = channel_messages_[channel_id - 1];
+  chunk_.add_message(channel_id, static_cast<std::uint32_t>(count), log_time_ns, publish_time_ns,
+                     data);
+  ++count;
+  if (message_count_ == 0) start_time_ = end_time_ = log_time_ns;
   start_time_ = std::min(start_time_, log_time_ns);
   end_time_ = std::max(end_time_, log_time_ns);
-  if (chunk_.size() >= options_.chunk_size) close_chunk();
+  ++message_count_;
+  if (chunk_.records_size() >= options_.chunk_size) close_chunk();
 }
 
 void McapWriter::close_chunk() {
+  require_open("a chunk");
   if (chunk_.empty()) return;
-  const std::uint32_t records_crc = mcap::crc32(0, chunk_);
-  const std::span<const unsigned char> stored =
-      compressor_ ? compressor_->compress(chunk_) : std::span<const unsigned char>(chunk_);
-  const std::string_view compression = compressor_ ? "zstd" : "";
-  mcap::ChunkIndexFields index;
-  index.message_start_time = chunk_start_time_;
-  index.message_end_time = chunk_end_time_;
-  index.chunk_start_offset = offset_;
-  index.compression = compression;
-  index.compressed_size = stored.size();
-  index.uncompressed_size = chunk_.size();
-
-  record_.clear();
-  mcap::append_chunk_prefix(record_, {chunk_start_time_, chunk_end_time_, chunk_.size(),
-                                      records_crc, compression, stored.size()});
-  emit(record_);
-  emit(stored);
-  index.chunk_length = offset_ - index.chunk_start_offset;
-
-  const std::uint64_t indexes_start = offset_;
-  for (std::size_t i = 0; i < channel_states_.size(); ++i) {
-    auto& entries = channel_states_[i].chunk_index;
-    if (entries.empty()) continue;
-    const auto channel_id = static_cast<std::uint16_t>(i + 1);
-    index.message_index_offsets.emplace_back(channel_id, offset_);
-    record_.clear();
-    mcap::append_message_index(record_, channel_id, entries);
-    emit(record_);
-    entries.clear();
-  }
-  index.message_index_length = offset_ - indexes_start;
-  mcap::append_chunk_index(chunk_indexes_, index);
-
-  ++chunk_count_;
+  chunk_.finish();
+  place(chunk_);
   chunk_.clear();
-  chunk_has_messages_ = false;
-  chunk_start_time_ = chunk_end_time_ = 0;
+}
+
+void McapWriter::write_chunk(const McapChunk& chunk) {
+  require_open("a chunk");
+  if (!chunk.finished()) fail("a chunk that was not finished");
+  for (const McapChunk::ChannelMessages& channel : chunk.channels()) {
+    if (channel.channel_id > channel_messages_.size()) {
+      fail("a chunk with messages on channel " + std::to_string(channel.channel_id) +
+           ", which was never added");
+    }
+    const auto expected = static_cast<std::uint32_t>(channel_messages_[channel.channel_id - 1]);
+    if (channel.first_sequence != expected) {
+      fail("a chunk whose messages on channel " + std::to_string(channel.channel_id) +
+           " start at sequence " + std::to_string(channel.first_sequence) + ", not " +
+           std::to_string(expected));
+    }
+  }
+  close_chunk();
+  for (const McapChunk::ChannelMessages& channel : chunk.channels()) {
+    channel_messages_[channel.channel_id - 1] += channel.count;
+  }
+  if (chunk.has_messages()) {
+    if (message_count_ == 0) start_time_ = end_time_ = chunk.start_time();
+    start_time_ = std::min(start_time_, chunk.start_time());
+    end_time_ = std::max(end_time_, chunk.end_time());
+    message_count_ += chunk.message_count();
+  }
+  place(chunk);
+}
+
+void McapWriter::place(const McapChunk& chunk) {
+  const std::span<const unsigned char> bytes = chunk.bytes();
+  mcap::ChunkIndexFields index;
+  index.message_start_time = chunk.start_time();
+  index.message_end_time = chunk.end_time();
+  index.chunk_start_offset = offset_;
+  index.chunk_length = chunk.chunk_record_size();
+  for (const auto& [channel_id, at] : chunk.message_index_offsets()) {
+    index.message_index_offsets.emplace_back(channel_id, offset_ + at);
+  }
+  index.message_index_length = bytes.size() - chunk.chunk_record_size();
+  index.compression = chunk.compression();
+  index.compressed_size = chunk.compressed_size();
+  index.uncompressed_size = chunk.records_size();
+  mcap::append_chunk_index(chunk_indexes_, index);
+  sink_->write(bytes);
+  crc_ = mcap::crc32_combine(crc_, chunk.crc(), bytes.size());
+  offset_ += bytes.size();
+  ++chunk_count_;
 }
 
 void McapWriter::finish() {
@@ -210,13 +186,13 @@ void McapWriter::finish() {
   mcap::StatisticsFields statistics;
   statistics.message_count = message_count_;
   statistics.schema_count = schema_count_;
-  statistics.channel_count = static_cast<std::uint32_t>(channel_states_.size());
+  statistics.channel_count = static_cast<std::uint32_t>(channel_messages_.size());
   statistics.chunk_count = chunk_count_;
   statistics.message_start_time = start_time_;
   statistics.message_end_time = end_time_;
-  for (std::size_t i = 0; i < channel_states_.size(); ++i) {
+  for (std::size_t i = 0; i < channel_messages_.size(); ++i) {
     statistics.channel_message_counts.emplace_back(static_cast<std::uint16_t>(i + 1),
-                                                   channel_states_[i].message_count);
+                                                   channel_messages_[i]);
   }
   record_.clear();
   mcap::append_statistics(record_, statistics);
@@ -239,12 +215,7 @@ void McapWriter::finish() {
 }
 
 std::size_t McapWriter::chunk_buffer_bytes() const {
-  std::size_t bytes = chunk_.capacity() + record_.capacity();
-  if (compressor_) bytes += compressor_->capacity();
-  for (const ChannelState& channel : channel_states_) {
-    bytes += channel.chunk_index.capacity() * sizeof(channel.chunk_index[0]);
-  }
-  return bytes;
+  return chunk_.buffer_bytes() + record_.capacity();
 }
 
 std::size_t McapWriter::summary_buffer_bytes() const {

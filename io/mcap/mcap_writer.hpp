@@ -10,7 +10,8 @@
 //   summary: every Schema, every Channel, Statistics, one Chunk Index per chunk,
 //   one Summary Offset per group of the summary, Footer (summary CRC-32), magic.
 // Memory holds one chunk's records (and their compressed copy) and, per chunk, one Chunk Index
-// record of some 100 bytes for the summary: flat in the file's length otherwise.
+// record of some 100 bytes for the summary: flat in the file's length otherwise. Chunks built
+// elsewhere (io/mcap/mcap_chunk.hpp, on other threads) are placed whole by write_chunk().
 // The bytes depend only on the calls made (no clock, no threads): the same calls give the same
 // file. Output goes through an AtomicOutputFile (nothing under the final name before finish()) or
 // into a sink the caller gives. Errors throw owsim::Error naming the file.
@@ -25,11 +26,10 @@
 #include <vector>
 
 #include "io/files/atomic_output_file.hpp"
+#include "io/mcap/mcap_chunk.hpp"
 #include "io/mcap/mcap_records.hpp"
 
 namespace owsim {
-
-enum class McapCompression { zstd, none };
 
 struct McapWriterOptions {
   std::string profile = "ros2";
@@ -77,6 +77,12 @@ class McapWriter {
   }
   void write_message(std::uint16_t channel_id, std::uint64_t log_time_ns,
                      std::uint64_t publish_time_ns, std::span<const unsigned char> data);
+  // Closes the open chunk (if it holds records), then writes `chunk` (finished, with messages on
+  // channels this writer added only, each channel's first sequence the count of its earlier
+  // messages) as the next chunk, whatever its size. Its compression is its own.
+  void write_chunk(const McapChunk& chunk);
+  // Closes the open chunk now (if it holds records), so the next message starts a new one.
+  void close_chunk();
   // Closes the last chunk, writes Data End, the summary and the footer, and renames the file to
   // its final name (or finishes the sink). Nothing may be written afterwards.
   void finish();
@@ -91,17 +97,12 @@ class McapWriter {
   [[nodiscard]] std::size_t summary_buffer_bytes() const;
 
  private:
-  class Compressor;
   class FileSink;
-  struct ChannelState {
-    std::uint64_t message_count = 0;
-    std::vector<std::pair<std::uint64_t, std::uint64_t>> chunk_index;  // log time, offset
-  };
 
   McapWriter(std::unique_ptr<McapSink> owned, McapSink* borrowed, std::string name,
              const McapWriterOptions& options);
   void emit(std::span<const unsigned char> bytes);
-  void close_chunk();
+  void place(const McapChunk& chunk);
   void require_open(std::string_view operation) const;
   [[noreturn]] void fail(std::string_view problem) const;
 
@@ -109,19 +110,15 @@ class McapWriter {
   McapSink* sink_;
   std::string name_;
   McapWriterOptions options_;
-  std::unique_ptr<Compressor> compressor_;
-  std::uint64_t offset_ = 0;  // bytes written
-  std::uint32_t crc_ = 0;     // of the data section, then of the summary
-  mcap::Bytes chunk_;         // the open chunk's records, uncompressed
-  mcap::Bytes record_;        // a record being written (prefixes, message indexes), reused
-  bool chunk_has_messages_ = false;
-  std::uint64_t chunk_start_time_ = 0;
-  std::uint64_t chunk_end_time_ = 0;
+  std::uint64_t offset_ = 0;   // bytes written
+  std::uint32_t crc_ = 0;      // of the data section, then of the summary
+  McapChunk chunk_;            // the open chunk
+  mcap::Bytes record_;         // a record being written (data end, summary), reused
   mcap::Bytes schemas_;        // the summary's Schema records
   mcap::Bytes channels_;       // the summary's Channel records
   mcap::Bytes chunk_indexes_;  // the summary's Chunk Index records
   std::uint16_t schema_count_ = 0;
-  std::vector<ChannelState> channel_states_;  // channel id - 1
+  std::vector<std::uint64_t> channel_messages_;  // by channel id − 1: messages written
   std::uint64_t message_count_ = 0;
   std::uint64_t start_time_ = 0;
   std::uint64_t end_time_ = 0;

@@ -7,7 +7,7 @@
 namespace owsim {
 
 PointRecord point_record(const FrameView& frame, std::size_t k, int r, const GeodesyCells& cells,
-                         GeodesyCells::Cursor& cursor, int recorded) {
+                         GeodesyCells::Cursor& cursor, int recorded, bool geodetic) {
   const PulseReturns& returns = frame.returns[k];
   const Pulse& pulse = frame.pulses[k];
   const PulseRay& ray = frame.rays[k];
@@ -23,9 +23,11 @@ PointRecord point_record(const FrameView& frame, std::size_t k, int r, const Geo
   point.range_m = ret.range_m;
   point.counter = ret.counter;
   point.enu_m = ray.origin_enu_m + ret.range_m * ray.dir_enu;
-  const PlacedPoint placed = cells.place(point.enu_m, cursor);
-  point.geodetic = placed.geodetic;
-  point.grid_m = placed.grid_m;
+  if (geodetic) {
+    const PlacedPoint placed = cells.place(point.enu_m, cursor);
+    point.geodetic = placed.geodetic;
+    point.grid_m = placed.grid_m;
+  }
   point.surface = static_cast<SurfaceClass>(ret.surface);
   point.object_index = ret.object_index;
   point.energy_rel = ret.energy_rel;
@@ -35,13 +37,13 @@ PointRecord point_record(const FrameView& frame, std::size_t k, int r, const Geo
 }
 
 void frame_points(const FrameView& frame, const GeodesyCells& cells, std::vector<PointRecord>& out,
-                  int recorded) {
+                  int recorded, bool geodetic) {
   out.clear();
   GeodesyCells::Cursor cursor;
   for (std::size_t k = 0; k < frame.returns.size(); ++k) {
     const int count = std::min(frame.returns[k].count, recorded);
     for (int r = 0; r < count; ++r) {
-      out.push_back(point_record(frame, k, r, cells, cursor, recorded));
+      out.push_back(point_record(frame, k, r, cells, cursor, recorded, geodetic));
     }
   }
 }

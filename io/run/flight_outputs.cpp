@@ -14,6 +14,7 @@
 #include "io/points/ply_writer.hpp"
 #include "io/points/points_csv_writer.hpp"
 #include "io/recording/word_file.hpp"
+#include "io/run/flight_mcap.hpp"
 #include "io/run/run_checkpoint.hpp"
 #include "io/run/summary_json.hpp"
 #include "io/run/truth_csv.hpp"
@@ -138,6 +139,11 @@ void FlightOutputs::open_outputs(const Scene& scene, const RunCheckpoint* from) 
                AtomicOutputFile::partial_path_for(final_path), ignored)) &&
            std::filesystem::exists(final_path);
   };
+  if (from != nullptr && wants(OutputKind::mcap)) {
+    throw input_error(checkpoint_path_.string(),
+                      "flight.mcap (output mcap) cannot be continued from a checkpoint; run "
+                      "without --resume");
+  }
   if (from != nullptr) {
     if (from->summary.counts.frames != static_cast<std::uint64_t>(from->frames_done)) {
       throw input_error(checkpoint_path_.string(),
@@ -215,6 +221,9 @@ void FlightOutputs::open_outputs(const Scene& scene, const RunCheckpoint* from) 
                                                        : TruthCsvWriter(path));
     }
   }
+  if (wants(OutputKind::mcap)) {
+    mcap_ = std::make_unique<FlightMcapFile>(directory, scene, scan_, options_.sensor_mount);
+  }
   if (wants(OutputKind::quicklook)) {
     QuicklookOptions quicklook;
     quicklook.every_nth_frame = options_.quicklook_every_nth_frame;
@@ -266,6 +275,7 @@ void FlightOutputs::add_frame(const FrameView& frame, const FrameEncoding& encod
   if (points_ply_) points_ply_->append(encoded.ply_vertices);
   if (trajectory_) trajectory_->write(encoded.frame_start);
   if (truth_) truth_->append(encoded.truth_rows, encoded.truth.rows.size());
+  if (mcap_) mcap_->append(encoded.mcap);
   if (quicklook_) {
     quicklook_->add_trajectory_point(encoded.frame_start.position_enu_m);
     quicklook_->add_frame(frame);
@@ -280,6 +290,7 @@ void FlightOutputs::add_placed_frame(const PlacedFrame& frame) {
     throw Error("outputs: frame " + std::to_string(frame.frame) + " placed, frame " +
                 std::to_string(frames_done_) + " expected");
   }
+  if (mcap_) throw Error("outputs: flight.mcap is written by one process only");
   summary_.add_frame(frame.frame, frame.tally);
   if (words_) words_->skip_frame();
   if (points_csv_) points_csv_->skip(frame.csv_bytes, frame.points);
@@ -346,6 +357,7 @@ void FlightOutputs::finish(const nlohmann::json& run_facts) {
   if (points_ply_) points_ply_->finish();
   if (trajectory_) trajectory_->finish();
   if (truth_) truth_->finish();
+  if (mcap_) mcap_->finish();
   if (quicklook_) quicklook_->finish();
   if (!options_.scenario.yaml.empty()) {
     write_input_copies(options_.directory, options_.scenario.inputs);

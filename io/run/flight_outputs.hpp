@@ -1,15 +1,16 @@
 #pragma once
 // Everything `owsim run` writes (INTERFACE.md "owsim run outputs"), fed one frame at a time in
 // frame order: the sensor words (flight.d64 or flight.hellas), points.csv / points.las /
-// points.ply, trajectory.csv, summary.json, truth.csv and quicklook/. Each file is written under a
-// temporary name and appears under its final name only when finish() completes it, so an
-// interrupted run leaves nothing half-written.
+// points.ply, trajectory.csv, summary.json, truth.csv, quicklook/ and flight.mcap. Each file is
+// written under a temporary name and appears under its final name only when finish() completes it,
+// so an interrupted run leaves nothing half-written.
 //
 // Given a run fingerprint, FlightOutputs also keeps the folder's checkpoint
 // (io/run/run_checkpoint.hpp) between frames, at most every checkpoint_interval_s of wall time: a
 // killed run (SIGKILL, no destructor) leaves its temporaries and the checkpoint, and FlightOutputs
 // built from that checkpoint cuts the temporaries back to it and continues them, so the finished
-// files are byte for byte those of an uninterrupted run, wherever the checkpoints fell.
+// files are byte for byte those of an uninterrupted run, wherever the checkpoints fell. flight.mcap
+// is not continued: a resume of a run with it is refused.
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
@@ -45,6 +46,8 @@ struct FlightOutputOptions {
   // What computes each frame's truth.csv rows (evaluation/frame_truth.hpp); must outlive the
   // outputs. Null: truth.csv is not written even if asked for.
   const FrameTruthSource* truth = nullptr;
+  // The sensor's mount: flight.mcap's /tf_static (base_link → owsim_sensor).
+  Mount sensor_mount;
   // scenario.yaml, the scenario as flown (io/scenario/scenario_as_flown.hpp), and the copies of
   // the files it names: written by finish() when the text is not empty.
   FlownScenario scenario;
@@ -57,6 +60,7 @@ class PlyWriter;
 class TrajectoryCsvWriter;
 class TruthCsvWriter;
 class Quicklook;
+class FlightMcapFile;
 struct RunCheckpoint;
 
 class FlightOutputs {
@@ -101,7 +105,8 @@ class FlightOutputs {
   // their places by the process that encoded it; this adds the rest in frame order from
   // frames_done() (the summary, the trajectory, the counts, the LAS statistics) and counts the
   // bytes as written. Writes no checkpoint: write_checkpoint() does, once every process's bytes
-  // are in the files. Throws owsim::Error for a frame out of order.
+  // are in the files. Throws owsim::Error for a frame out of order, or when flight.mcap is among
+  // the outputs (a distributed run refuses it).
   void add_placed_frame(const PlacedFrame& frame);
   // ORs the hits of the frames another Quicklook took (its QuicklookCheckpoint::map_mask) into
   // the map: a distributed run's processes each draw the hits and range images of their frames.
@@ -152,6 +157,7 @@ class FlightOutputs {
   std::unique_ptr<TrajectoryCsvWriter> trajectory_;
   std::unique_ptr<TruthCsvWriter> truth_;
   std::unique_ptr<Quicklook> quicklook_;
+  std::unique_ptr<FlightMcapFile> mcap_;
   FrameEncoder encoder_;
   FrameEncoding encoding_;  // add_frame(frame, frame_start)'s, reused per frame
   std::int64_t frames_done_ = 0;

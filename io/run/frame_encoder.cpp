@@ -30,6 +30,7 @@ FrameEncoder::FrameEncoder(const std::filesystem::path& directory,
     las.origin = local_frame.origin();
     las_.emplace((directory / "points.las").string(), las);
   }
+  if (wants(OutputKind::mcap)) mcap_.emplace(scan, local_frame);
 }
 
 void FrameEncoder::size_encoding(FrameEncoding& out) const {
@@ -113,12 +114,14 @@ void FrameEncoder::finish_encoding(const FrameView& frame, const Pose& frame_sta
     if (wants(OutputKind::d64) && scan_.model == SensorModel::hellas) {
       out.hellas_header_word = hellas_file_header_word(frame.sweep, frame.pulses.front().time_s);
     }
-    if (wants_points()) {
-      frame_points(frame, geodesy_, out.points, recorded_returns(scan_.model));
+    if (makes_points()) {
+      // flight.mcap alone takes the East-North-Up positions only: no geodesy.
+      frame_points(frame, geodesy_, out.points, recorded_returns(scan_.model), wants_points());
       out.csv_rows.clear();
       if (csv_) csv_->encode(out.points, out.csv_rows);
       if (las_) las_->encode(out.points, out.las);
       if (wants(OutputKind::ply)) PlyWriter::encode(out.points, out.ply_vertices);
+      if (mcap_) mcap_->encode(frame.frame, frame_start, out.points, out.mcap);
     }
     out.truth_rows.clear();
     if (truth_rows_) {

@@ -1,10 +1,10 @@
 #pragma once
 // One frame's bytes for every output `owsim run` writes (io/run/flight_outputs.hpp), encoded
 // without the files: the sensor words, points.csv rows, points.las records, points.ply vertices
-// and the frame's part of summary.json. Every method is const and may run on any thread,
-// concurrently with itself (each call with its own FrameEncoding), so the costly part of the
-// outputs runs on the pipeline's parallel stage, and on every process of a distributed run
-// (distributed/), not only where the files are.
+// the frame's part of summary.json and its chunk of flight.mcap. Every method is const and may run
+// on any thread, concurrently with itself (each call with its own FrameEncoding), so the costly
+// part of the outputs runs on the pipeline's parallel stage, and on every process of a distributed
+// run (distributed/), not only where the files are.
 #include <filesystem>
 #include <optional>
 #include <set>
@@ -14,6 +14,7 @@
 #include "geometry/scene.hpp"
 #include "io/points/las_writer.hpp"
 #include "io/points/points_csv_writer.hpp"
+#include "io/run/flight_mcap.hpp"
 #include "io/run/flight_summary.hpp"
 #include "io/run/frame_encoding.hpp"
 #include "io/run/output_kind.hpp"
@@ -51,6 +52,8 @@ class FrameEncoder {
 
   [[nodiscard]] bool wants(OutputKind kind) const { return outputs_.contains(kind); }
   [[nodiscard]] bool wants_points() const { return owsim::wants_points(outputs_); }
+  // Whether a frame's points are made: for a point file or flight.mcap.
+  [[nodiscard]] bool makes_points() const { return wants_points() || mcap_.has_value(); }
   [[nodiscard]] const ScanParams& scan() const { return scan_; }
 
  private:
@@ -62,6 +65,7 @@ class FrameEncoder {
   std::optional<LasPointEncoder> las_;
   const FrameTruthSource* truth_ = nullptr;
   std::optional<TruthCsvRows> truth_rows_;
+  std::optional<FlightMcapEncoder> mcap_;
 };
 
 }  // namespace owsim

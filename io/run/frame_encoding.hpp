@@ -11,6 +11,7 @@
 
 #include "io/points/las_writer.hpp"
 #include "io/points/point_record.hpp"
+#include "io/run/flight_mcap.hpp"
 #include "io/run/flight_summary.hpp"
 #include "io/run/frame_truth.hpp"
 #include "sensor/mounting.hpp"
@@ -30,6 +31,7 @@ struct FrameEncoding {
   std::vector<unsigned char> ply_vertices;  // points.ply
   FrameTruth truth;                         // the frame's ground truth
   std::string truth_rows;                   // truth.csv
+  McapFrameEncoding mcap;                   // flight.mcap: the frame's chunk
   // What encoding threw: add_frame rethrows it, so errors surface in frame order.
   std::exception_ptr error;
   // The per-pulse part as FlightOutputs::encode_pulses leaves it, one entry per scan line: a

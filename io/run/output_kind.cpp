@@ -16,7 +16,8 @@ constexpr std::pair<OutputKind, std::string_view> kNames[] = {
     {OutputKind::trajectory, "trajectory"},
     {OutputKind::summary, "summary"},
     {OutputKind::truth, "truth"},
-    {OutputKind::quicklook, "quicklook"}};
+    {OutputKind::quicklook, "quicklook"},
+    {OutputKind::mcap, "mcap"}};
 constexpr OutputKind kPointKinds[] = {OutputKind::csv, OutputKind::las, OutputKind::ply};
 
 }  // namespace
@@ -24,6 +25,7 @@ constexpr OutputKind kPointKinds[] = {OutputKind::csv, OutputKind::las, OutputKi
 std::set<OutputKind> all_outputs() {
   std::set<OutputKind> kinds;
   for (const auto& [kind, name] : kNames) kinds.insert(kind);
+  kinds.erase(OutputKind::mcap);  // asked for by name only
   return kinds;
 }
 
@@ -44,7 +46,7 @@ std::set<OutputKind> parse_output_list(std::string_view list) {
       throw input_error("--outputs",
                         "unknown output '" + std::string(item) +
                             "' (expected d64, points, csv, las, ply, trajectory, summary, "
-                            "truth, quicklook)");
+                            "truth, quicklook, mcap)");
     }
     kinds.insert(known->first);
   }

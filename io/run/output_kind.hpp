@@ -10,7 +10,9 @@ namespace owsim {
 
 // The point files are three outputs: points.csv, points.las, points.ply.
 // truth: truth.csv, the objects each frame could see (io/run/truth_csv.hpp).
-enum class OutputKind { d64, csv, las, ply, trajectory, summary, truth, quicklook };
+// mcap: flight.mcap and metadata.yaml for Foxglove and ROS 2 (io/run/flight_mcap.hpp); written
+// only when asked for by name.
+enum class OutputKind { d64, csv, las, ply, trajectory, summary, truth, quicklook, mcap };
 
 // "d64,summary" → {d64, summary}; `points` is csv, las and ply together; the word file is
 // flight.hellas for a HELLAS scenario. Throws owsim::Error naming the unknown item.
@@ -18,6 +20,7 @@ enum class OutputKind { d64, csv, las, ply, trajectory, summary, truth, quickloo
 // The list parse_output_list reads back: the outputs in a fixed order, "d64,points,…" (`points`
 // for all three point files, else those chosen).
 [[nodiscard]] std::string output_list(const std::set<OutputKind>& outputs);
+// The default outputs: every one but mcap.
 [[nodiscard]] std::set<OutputKind> all_outputs();
 // Whether any point file is among `outputs`.
 [[nodiscard]] bool wants_points(const std::set<OutputKind>& outputs);
