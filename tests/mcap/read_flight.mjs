@@ -12,11 +12,12 @@ import { createRequire } from 'node:module';
 import { join } from 'node:path';
 import { crc32 } from 'node:zlib';
 
+import { decompressHandlers } from './zstd_handlers.mjs';
+
 const require = createRequire(new URL('../../web/package.json', import.meta.url));
 const { McapIndexedReader, McapStreamReader } = require('@mcap/core');
 const { MessageReader } = require('@foxglove/rosmsg2-serialization');
 const { parse } = require('@foxglove/rosmsg');
-const { decompress } = require('fzstd');
 const YAML = require('yaml');
 
 const FRAMES = 3;
@@ -44,11 +45,6 @@ const poses = csv('trajectory.csv');
 const flown = YAML.parse(readFileSync(join(dir, 'scenario.yaml'), 'utf8'));
 
 // ----- The file, record by record and through its summary, CRCs validated.
-const decompressHandlers = { zstd: (buffer, size) => {
-  const out = decompress(buffer);
-  if (BigInt(out.length) !== size) throw new Error(`zstd: ${out.length} bytes, not ${size}`);
-  return out;
-} };
 const stream = new McapStreamReader({ decompressHandlers, validateCrcs: true, includeChunks: true });
 stream.append(bytes);
 let records = 0;

@@ -11,11 +11,12 @@ import { join } from 'node:path';
 import { isDeepStrictEqual } from 'node:util';
 import { crc32 } from 'node:zlib';
 
+import { decompressHandlers } from './zstd_handlers.mjs';
+
 const require = createRequire(new URL('../../web/package.json', import.meta.url));
 const { McapIndexedReader, McapStreamReader } = require('@mcap/core');
 const { MessageReader } = require('@foxglove/rosmsg2-serialization');
 const { parse } = require('@foxglove/rosmsg');
-const { decompress } = require('fzstd');
 const YAML = require('yaml');
 
 const [program, dir] = process.argv.slice(2);
@@ -59,11 +60,6 @@ function difference(actual, wanted, path = '') {
   return isDeepStrictEqual(actual, wanted) ? null : `${path}: ${JSON.stringify(actual)} != ${JSON.stringify(wanted)}`;
 }
 
-const decompressHandlers = { zstd: (buffer, size) => {
-  const out = decompress(buffer);
-  if (BigInt(out.length) !== size) throw new Error(`zstd: ${out.length} bytes, not ${size}`);
-  return out;
-} };
 
 // Every record from the start, CRCs validated (chunks, data section, summary).
 const stream = new McapStreamReader({ decompressHandlers, validateCrcs: true, includeChunks: true });
