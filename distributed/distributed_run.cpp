@@ -116,6 +116,7 @@ struct Block {
       placed.truth_row_count = encoding.truth.rows.size();
       placed.truth_rows = encoding.truth_rows;
     }
+    if (encoder.wants(OutputKind::mcap)) encoding.mcap.chunk.append_finished(placed.mcap_chunk);
     if (encoder.wants(OutputKind::ply)) {
       bytes[kPly].insert(bytes[kPly].end(), encoding.ply_vertices.begin(),
                          encoding.ply_vertices.end());
@@ -157,18 +158,14 @@ RunReport run_distributed(Communicator& comm, const Simulation& simulation,
   const FlightSetup& setup = simulation.setup();
   const ScanParams& scan = setup.scenario.scan;
   const bool root = comm.rank() == kRoot;
-  // flight.mcap's chunks follow one another in one process's writer (io/run/flight_mcap.hpp): a
-  // distributed run does not place them. Every process meets this; process 0 says it.
-  if (options.outputs.contains(OutputKind::mcap)) {
-    if (root) {
-      throw JobError(
-          "--outputs: mcap (flight.mcap) is written by one process: run it without "
-          "mpirun");
-    }
+  // What every process meets in the options (--resume with mcap) is said once, by process 0.
+  FlightOutputOptions output_options;
+  try {
+    output_options = run_output_options(setup, simulation.run_fingerprint(options), options);
+  } catch (const Error& e) {
+    if (root) throw JobError(e.what());
     throw ReportedElsewhere();
   }
-  FlightOutputOptions output_options =
-      run_output_options(setup, simulation.run_fingerprint(options), options);
   output_options.scenario = simulation.scenario_as_flown();
 
   // Process 0 alone touches the folder's state; a failure there stops every process.

@@ -9,7 +9,9 @@
 // far, and all write at once (MPI-IO collective writes into the `.partial` temporaries, so the
 // words, points.csv/.las/.ply go straight to their places). What the frames add besides bytes —
 // the summary's counts and ground truth, the trajectory rows, the LAS header's counts and bounds,
-// the quick-look map's trajectory — is gathered at process 0, which keeps the files' state
+// the quick-look map's trajectory, flight.mcap's chunks (one a frame, built and compressed by the
+// process that simulated it; a chunk's index entry depends on where it lands, so process 0
+// appends them, one round's at a time) — is gathered at process 0, which keeps the files' state
 // exactly as FlightOutputs does in one process (add_placed_frame, in frame order), writes the
 // checkpoint when one is due (after every process's bytes are synced and the map's hits ORed
 // together), and at the end completes the headers, summary.json and map.png and renames the

@@ -69,6 +69,8 @@ void append_placed_frame(const PlacedFrame& frame, std::string& out) {
   put(out, frame.truth_row_count);
   put(out, static_cast<std::uint64_t>(frame.truth_rows.size()));
   out += frame.truth_rows;
+  put(out, static_cast<std::uint64_t>(frame.mcap_chunk.size()));
+  out += frame.mcap_chunk;
 }
 
 std::vector<PlacedFrame> read_placed_frames(std::string_view bytes) {
@@ -96,6 +98,9 @@ std::vector<PlacedFrame> read_placed_frames(std::string_view bytes) {
     std::uint64_t truth_bytes = 0;
     in.get(truth_bytes);
     frame.truth_rows = in.get_text(truth_bytes);
+    std::uint64_t mcap_bytes = 0;
+    in.get(mcap_bytes);
+    frame.mcap_chunk = in.get_text(mcap_bytes);
   }
   return frames;
 }

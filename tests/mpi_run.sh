@@ -1,7 +1,8 @@
 #!/bin/sh
 # `mpirun -np N owsim run` against one process (issue 18): every output byte-identical for
-# N = 1, 2, 3 (MilOWS with every output, HELLAS words), a job killed mid-flight resumed by another
-# number of processes to the same bytes, and bad input said in one line.
+# N = 1, 2, 3 (MilOWS with every output, HELLAS words; flight.mcap for N = 2), a job killed
+# mid-flight resumed by another number of processes to the same bytes, and bad input said in one
+# line.
 #   mpi_run.sh OWSIM SOURCE_DIR WORK_DIR
 set -eu
 owsim=$1
@@ -26,6 +27,24 @@ for n in 1 2 3; do
   $same ref_hellas hellas$n
 done
 grep -q '"processes": 3' mpi3/summary.json
+
+# flight.mcap (issue 47): each process builds its frames' chunks, process 0 appends them in frame
+# order: flight.mcap and metadata.yaml are one process's bytes, whatever the threads. --resume with
+# mcap is refused, in one line.
+"$owsim" run "$source/examples/corridor.yaml" --frames 30 --threads 2 --outputs mcap,d64 \
+  --out ref_mcap --quiet
+$mpirun -np 2 "$owsim" run "$source/examples/corridor.yaml" --frames 30 --threads 1 \
+  --outputs mcap,d64 --out mcap2 --quiet
+$same ref_mcap mcap2
+cmp ref_mcap/flight.mcap mcap2/flight.mcap
+cmp ref_mcap/metadata.yaml mcap2/metadata.yaml
+if $mpirun -np 2 "$owsim" run "$source/examples/corridor.yaml" --frames 30 --outputs mcap,d64 \
+     --out mcap_resumed --resume > mcap_resume.log 2>&1; then
+  echo "FAIL: --resume with mcap ran"; exit 1
+fi
+lines=$(grep -c '^owsim:' mcap_resume.log)
+if [ "$lines" -ne 1 ]; then echo "FAIL: $lines error lines"; cat mcap_resume.log; exit 1; fi
+grep '^owsim: --resume: flight.mcap (output mcap) cannot be continued' mcap_resume.log
 
 # A process killed after the first checkpoint ends the job; --resume with 3 processes completes it.
 "$owsim" run "$source/examples/corridor.yaml" --threads 2 --out ref_full --quiet

@@ -70,19 +70,44 @@ TEST(DistributedRun, OneProcessWritesTheBytesOfARun) {
   expect_same_outputs(work.path() / "run", work.path() / "placed");
 }
 
-TEST(DistributedRun, RefusesFlightMcapInOneLineBeforeWritingAnything) {
+// Regression (issue 47): a distributed run refused mcap. Process 0 now appends the chunks the
+// processes built, in frame order: flight.mcap and metadata.yaml are a one-process run's bytes.
+TEST(DistributedRun, OneProcessPlacesTheChunksOfFlightMcap) {
+  test::TempDir work;
+  const Simulation simulation = corridor(11);
+  RunOptions run;
+  run.out = work.path() / "run";
+  run.outputs = parse_output_list("mcap,d64");
+  static_cast<void>(simulation.run(run));
+  std::unique_ptr<Communicator> comm = single_process_communicator();
+  RunOptions placed = run;
+  placed.out = work.path() / "placed";
+  DistributedRunOptions blocks;
+  blocks.frames_per_block = 4;  // two full blocks and one of three frames
+  static_cast<void>(run_distributed(*comm, simulation, placed, blocks));
+  const std::map<std::string, std::string> files = test::files_under(work.path() / "run");
+  EXPECT_EQ(files.size(), 4u);  // flight.d64, flight.mcap, metadata.yaml, scenario.yaml
+  EXPECT_EQ(files, test::files_under(work.path() / "placed"));
+  EXPECT_GT(files.at("flight.mcap").size(), 11u * 1000u);
+  EXPECT_NE(files.at("metadata.yaml").find("message_count: 35\n"), std::string::npos)
+      << files.at("metadata.yaml");  // 3 a frame and the 2 latched ones
+}
+
+TEST(DistributedRun, RefusesToResumeFlightMcapInOneLineBeforeWritingAnything) {
   test::TempDir work;
   const Simulation simulation = corridor(2);
   std::unique_ptr<Communicator> comm = single_process_communicator();
   RunOptions run;
   run.out = work.path() / "run";
   run.outputs = parse_output_list("d64,mcap");
+  run.resume = true;
   try {
     static_cast<void>(run_distributed(*comm, simulation, run));
     FAIL() << "no error";
   } catch (const JobError& error) {
     EXPECT_STREQ(error.what(),
-                 "--outputs: mcap (flight.mcap) is written by one process: run it without mpirun");
+                 "--resume: flight.mcap (output mcap) cannot be continued from a checkpoint; run "
+                 "without --resume, or without mcap");
   }
   EXPECT_FALSE(std::filesystem::exists(work.path() / "run"));
 }

@@ -324,6 +324,60 @@ TEST(McapWriter, AChunkBuiltApartIsPlacedAsTheWriterWouldHaveWrittenIt) {
   EXPECT_EQ(placed_sink.data, direct_sink.data);
 }
 
+// A distributed run (issue 47): a chunk built in one process is sent as bytes and placed by
+// another. Placed from the bytes, it gives the file the chunk itself gives, index included.
+TEST(McapChunk, AChunkSentAsBytesIsPlacedAsTheChunkItself) {
+  const Bytes payload(300, 0x5a);
+  MemorySink built_sink, sent_sink;
+  McapWriter built(built_sink, "built.mcap");
+  McapWriter sent(sent_sink, "sent.mcap");
+  for (McapWriter* writer : {&built, &sent}) {
+    const auto schema = writer->add_schema("pkg/msg/T", "ros2msg", "uint8[] a\n");
+    writer->add_channel(schema, "/a", "cdr");
+    writer->add_channel(schema, "/b", "cdr");
+  }
+  McapChunk chunk, received;
+  std::string bytes;
+  for (std::uint32_t frame = 0; frame < 3; ++frame) {
+    chunk.clear();
+    chunk.add_message(2, frame, 1000 + frame, 1000 + frame, payload);
+    chunk.add_message(1, frame, 900 + frame, 900 + frame, payload);
+    chunk.finish();
+    built.write_chunk(chunk);
+    bytes.clear();
+    chunk.append_finished(bytes);
+    received.read_finished(bytes);
+    EXPECT_TRUE(received.finished());
+    EXPECT_EQ(received.records_size(), chunk.records_size());
+    EXPECT_EQ(received.message_count(), 2u);
+    sent.write_chunk(received);
+  }
+  built.finish();
+  sent.finish();
+  EXPECT_EQ(sent.messages_written(), 6u);
+  EXPECT_EQ(sent_sink.data, built_sink.data);
+
+  // Cut short or longer, or of another compression: refused; an unfinished chunk is not sent.
+  EXPECT_THROW(received.read_finished(std::string_view(bytes).substr(0, bytes.size() - 1)), Error);
+  EXPECT_THROW(received.read_finished(bytes + "x"), Error);
+  EXPECT_THROW(received.read_finished(""), Error);
+  McapChunk plain(McapCompression::none);
+  try {
+    plain.read_finished(bytes);
+    FAIL() << "no error";
+  } catch (const Error& error) {
+    EXPECT_STREQ(error.what(), "MCAP chunk: a chunk of another compression read into this one");
+  }
+  chunk.clear();
+  EXPECT_THROW(chunk.append_finished(bytes), Error);
+  // Read back and cleared, a chunk builds and compresses as before.
+  received.clear();
+  received.add_message(1, 3, 5, 5, payload);
+  received.finish();
+  EXPECT_EQ(received.compression(), "zstd");
+  EXPECT_LT(received.compressed_size(), received.records_size());
+}
+
 TEST(McapWriter, RefusesAChunkThatDoesNotContinueItsChannels) {
   MemorySink sink;
   McapWriter writer(sink, "gap.mcap");

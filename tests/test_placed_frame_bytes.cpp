@@ -1,11 +1,10 @@
 // The frames a distributed run gathers at process 0 (distributed/placed_frame_bytes.hpp) come back
 // field for field, however many and whatever they hold; bytes cut short are refused.
-#include "distributed/placed_frame_bytes.hpp"
-
 #include <gtest/gtest.h>
 
 #include <random>
 
+#include "distributed/placed_frame_bytes.hpp"
 #include "geometry/error.hpp"
 
 namespace owsim {
@@ -25,9 +24,9 @@ PlacedFrame random_frame(std::mt19937_64& random, std::int64_t frame) {
   placed.tally.second_returns = count(random);
   const auto hits = static_cast<std::size_t>(count(random) % 50);
   for (std::size_t h = 0; h < hits; ++h) {
-    placed.tally.object_hits.push_back(
-        {static_cast<std::uint32_t>(count(random)), static_cast<std::uint32_t>(count(random) % 2),
-         real(random), real(random)});
+    placed.tally.object_hits.push_back({static_cast<std::uint32_t>(count(random)),
+                                        static_cast<std::uint32_t>(count(random) % 2), real(random),
+                                        real(random)});
   }
   placed.points = count(random);
   placed.csv_bytes = count(random);
@@ -37,6 +36,8 @@ PlacedFrame random_frame(std::mt19937_64& random, std::int64_t frame) {
     placed.las.min_record[axis] = static_cast<std::int32_t>(real(random));
     placed.las.max_record[axis] = static_cast<std::int32_t>(real(random));
   }
+  placed.mcap_chunk.resize(static_cast<std::size_t>(count(random) % 300));
+  for (char& c : placed.mcap_chunk) c = static_cast<char>(count(random));
   return placed;
 }
 
@@ -62,6 +63,7 @@ void expect_same(const PlacedFrame& a, const PlacedFrame& b) {
   EXPECT_EQ(a.las.points_by_return, b.las.points_by_return);
   EXPECT_EQ(a.las.min_record, b.las.min_record);
   EXPECT_EQ(a.las.max_record, b.las.max_record);
+  EXPECT_EQ(a.mcap_chunk, b.mcap_chunk);
 }
 
 TEST(PlacedFrameBytes, FramesComeBackFieldForField) {
@@ -84,8 +86,7 @@ TEST(PlacedFrameBytes, BytesCutShortAreRefused) {
   std::string bytes;
   append_placed_frame(random_frame(random, 0), bytes);
   for (const std::size_t cut : {std::size_t{1}, std::size_t{8}, bytes.size() / 2}) {
-    EXPECT_THROW(static_cast<void>(read_placed_frames(bytes.substr(0, bytes.size() - cut))),
-                 Error);
+    EXPECT_THROW(static_cast<void>(read_placed_frames(bytes.substr(0, bytes.size() - cut))), Error);
   }
   EXPECT_TRUE(read_placed_frames("").empty());
 }

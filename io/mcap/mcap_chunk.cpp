@@ -4,10 +4,58 @@
 
 #include <algorithm>
 #include <cstring>
+#include <type_traits>
 
 #include "geometry/error.hpp"
 
 namespace owsim {
+namespace {
+
+template <typename T>
+void put(std::string& out, const T& value) {
+  static_assert(std::is_trivially_copyable_v<T>);
+  out.append(reinterpret_cast<const char*>(&value), sizeof value);
+}
+
+// Reads what put() wrote; throws owsim::Error when the bytes end first.
+class Reader {
+ public:
+  explicit Reader(std::string_view bytes) : bytes_(bytes) {}
+  template <typename T>
+  void get(T& value) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    get_bytes(&value, sizeof value);
+  }
+  // `count` values of T, the count read first.
+  template <typename T>
+  void get_vector(std::vector<T>& values) {
+    std::uint64_t count = 0;
+    get(count);
+    if (count > bytes_.size() / sizeof(T)) fail();
+    values.resize(static_cast<std::size_t>(count));
+    get_bytes(values.data(), values.size() * sizeof(T));
+  }
+  [[nodiscard]] bool empty() const { return bytes_.empty(); }
+
+ private:
+  void get_bytes(void* to, std::size_t size) {
+    if (bytes_.size() < size) fail();
+    if (size > 0) std::memcpy(to, bytes_.data(), size);
+    bytes_.remove_prefix(size);
+  }
+  [[noreturn]] static void fail() { throw Error("MCAP chunk: the bytes end inside a chunk"); }
+
+  std::string_view bytes_;
+};
+
+template <typename T>
+void put_vector(std::string& out, const std::vector<T>& values) {
+  static_assert(std::is_trivially_copyable_v<T>);
+  put(out, static_cast<std::uint64_t>(values.size()));
+  out.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+}
+
+}  // namespace
 
 // zstd's compression context, reused from chunk to chunk.
 class McapChunk::Compressor {
@@ -60,6 +108,7 @@ void McapChunk::clear() {
   crc_ = 0;
   chunk_record_size_ = 0;
   compressed_size_ = 0;
+  uncompressed_size_ = 0;
   finished_ = false;
 }
 
@@ -133,6 +182,60 @@ void McapChunk::finish() {
     mcap::append_message_index(bytes_, channel_id, channel.entries);
   }
   crc_ = mcap::crc32(0, bytes_);
+  uncompressed_size_ = records_.size();
+  finished_ = true;
+}
+
+void McapChunk::append_finished(std::string& out) const {
+  if (!finished_) throw Error("MCAP chunk: sent before it was finished");
+  put(out, compression_);
+  put(out, message_count_);
+  put(out, start_time_);
+  put(out, end_time_);
+  put(out, crc_);
+  put(out, static_cast<std::uint64_t>(chunk_record_size_));
+  put(out, compressed_size_);
+  put(out, static_cast<std::uint64_t>(uncompressed_size_));
+  put_vector(out, channels_);
+  put(out, static_cast<std::uint64_t>(message_index_offsets_.size()));
+  for (const auto& [channel_id, offset] : message_index_offsets_) {
+    put(out, channel_id);
+    put(out, offset);
+  }
+  put_vector(out, bytes_);
+}
+
+void McapChunk::read_finished(std::string_view bytes) {
+  clear();
+  Reader in(bytes);
+  McapCompression compression = compression_;
+  in.get(compression);
+  // A chunk stays what it was made: the compression of the chunks it builds after clear().
+  if (compression != compression_) {
+    throw Error("MCAP chunk: a chunk of another compression read into this one");
+  }
+  in.get(message_count_);
+  in.get(start_time_);
+  in.get(end_time_);
+  in.get(crc_);
+  std::uint64_t size = 0;
+  in.get(size);
+  chunk_record_size_ = static_cast<std::size_t>(size);
+  in.get(compressed_size_);
+  in.get(size);
+  uncompressed_size_ = static_cast<std::size_t>(size);
+  in.get_vector(channels_);
+  std::uint64_t indexes = 0;
+  in.get(indexes);
+  for (std::uint64_t i = 0; i < indexes; ++i) {
+    std::uint16_t channel_id = 0;
+    std::uint64_t offset = 0;
+    in.get(channel_id);
+    in.get(offset);
+    message_index_offsets_.emplace_back(channel_id, offset);
+  }
+  in.get_vector(bytes_);
+  if (!in.empty()) throw Error("MCAP chunk: bytes after the chunk");
   finished_ = true;
 }
 

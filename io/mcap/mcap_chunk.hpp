@@ -5,7 +5,8 @@
 // id). Those bytes depend on nothing before them in the file, so chunks can be built on any thread
 // (each McapChunk its own, with its own zstd context) and McapWriter::write_chunk()
 // (io/mcap/mcap_writer.hpp) places them in order, computing their Chunk Index from where they
-// land. Reused chunk after chunk (clear()): it allocates only while its buffers grow.
+// land. Reused chunk after chunk (clear()): it allocates only while its buffers grow. A finished
+// chunk also travels between the processes of a distributed run (append_finished, read_finished).
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -52,9 +53,12 @@ class McapChunk {
   // clear()). Throws owsim::Error if compression fails.
   void finish();
 
-  [[nodiscard]] bool empty() const { return records_.empty(); }
+  [[nodiscard]] bool empty() const { return records_size() == 0; }
   [[nodiscard]] bool finished() const { return finished_; }
-  [[nodiscard]] std::size_t records_size() const { return records_.size(); }  // uncompressed
+  // The records' bytes, uncompressed.
+  [[nodiscard]] std::size_t records_size() const {
+    return finished_ ? uncompressed_size_ : records_.size();
+  }
   [[nodiscard]] bool has_messages() const { return message_count_ > 0; }
   [[nodiscard]] std::uint64_t message_count() const { return message_count_; }
   [[nodiscard]] std::uint64_t start_time() const { return start_time_; }
@@ -73,6 +77,16 @@ class McapChunk {
     return message_index_offsets_;
   }
   [[nodiscard]] const std::vector<ChannelMessages>& channels() const { return channels_; }
+
+  // A finished chunk as bytes: its laid-out bytes and what McapWriter::write_chunk needs besides,
+  // for a process that places chunks another one built (distributed/distributed_run.hpp). Both
+  // ends are the same owsim build: fields in a fixed order, native byte order, not a file format.
+  // Throws owsim::Error if the chunk is not finished.
+  void append_finished(std::string& out) const;
+  // Becomes the finished chunk append_finished wrote into `bytes` (the whole of them): ready for
+  // McapWriter::write_chunk, nothing may be added until clear(). Throws owsim::Error for bytes of
+  // another size or a chunk of another compression than this one's.
+  void read_finished(std::string_view bytes);
 
   // Bytes held (records, compressed copy, laid-out bytes, message index entries).
   [[nodiscard]] std::size_t buffer_bytes() const;
@@ -98,6 +112,7 @@ class McapChunk {
   std::uint32_t crc_ = 0;
   std::size_t chunk_record_size_ = 0;
   std::uint64_t compressed_size_ = 0;
+  std::size_t uncompressed_size_ = 0;  // records_size() once finished
   bool finished_ = false;
 };
 

@@ -184,12 +184,12 @@ FlightMcapFile::FlightMcapFile(const std::filesystem::path& directory, const Sce
   topic_messages_[kTfStaticChannel - 1] = topic_messages_[kSceneChannel - 1] = 1;
 }
 
-void FlightMcapFile::append(const McapFrameEncoding& frame) {
-  writer_.write_chunk(frame.chunk);
-  for (const McapChunk::ChannelMessages& channel : frame.chunk.channels()) {
+void FlightMcapFile::append(const McapChunk& frame) {
+  writer_.write_chunk(frame);
+  for (const McapChunk::ChannelMessages& channel : frame.channels()) {
     topic_messages_[channel.channel_id - 1] += channel.count;
   }
-  if (frame.chunk.has_messages()) end_ns_ = std::max(end_ns_, frame.chunk.end_time());
+  if (frame.has_messages()) end_ns_ = std::max(end_ns_, frame.end_time());
 }
 
 void FlightMcapFile::finish() {

@@ -92,8 +92,9 @@ class FlightMcapFile {
  public:
   FlightMcapFile(const std::filesystem::path& directory, const Scene& scene, const ScanParams& scan,
                  const Mount& mount);
-  // Throws owsim::Error for a frame out of order.
-  void append(const McapFrameEncoding& frame);
+  // A frame's chunk (McapFrameEncoding::chunk, or one another process built and sent). Throws
+  // owsim::Error for a frame out of order.
+  void append(const McapChunk& frame);
   void finish();
 
  private:

@@ -275,7 +275,7 @@ void FlightOutputs::add_frame(const FrameView& frame, const FrameEncoding& encod
   if (points_ply_) points_ply_->append(encoded.ply_vertices);
   if (trajectory_) trajectory_->write(encoded.frame_start);
   if (truth_) truth_->append(encoded.truth_rows, encoded.truth.rows.size());
-  if (mcap_) mcap_->append(encoded.mcap);
+  if (mcap_) mcap_->append(encoded.mcap.chunk);
   if (quicklook_) {
     quicklook_->add_trajectory_point(encoded.frame_start.position_enu_m);
     quicklook_->add_frame(frame);
@@ -290,7 +290,6 @@ void FlightOutputs::add_placed_frame(const PlacedFrame& frame) {
     throw Error("outputs: frame " + std::to_string(frame.frame) + " placed, frame " +
                 std::to_string(frames_done_) + " expected");
   }
-  if (mcap_) throw Error("outputs: flight.mcap is written by one process only");
   summary_.add_frame(frame.frame, frame.tally);
   if (words_) words_->skip_frame();
   if (points_csv_) points_csv_->skip(frame.csv_bytes, frame.points);
@@ -298,6 +297,10 @@ void FlightOutputs::add_placed_frame(const PlacedFrame& frame) {
   if (points_ply_) points_ply_->skip(frame.points);
   if (trajectory_) trajectory_->write(frame.frame_start);
   if (truth_) truth_->append(frame.truth_rows, frame.truth_row_count);
+  if (mcap_) {
+    placed_mcap_chunk_.read_finished(frame.mcap_chunk);
+    mcap_->append(placed_mcap_chunk_);
+  }
   if (quicklook_) quicklook_->add_trajectory_point(frame.frame_start.position_enu_m);
   ++frames_done_;
   resumed_while_finishing_ = false;

@@ -103,10 +103,10 @@ class FlightOutputs {
 
   // A distributed run (distributed/): the bytes of a frame were written into the temporaries at
   // their places by the process that encoded it; this adds the rest in frame order from
-  // frames_done() (the summary, the trajectory, the counts, the LAS statistics) and counts the
-  // bytes as written. Writes no checkpoint: write_checkpoint() does, once every process's bytes
-  // are in the files. Throws owsim::Error for a frame out of order, or when flight.mcap is among
-  // the outputs (a distributed run refuses it).
+  // frames_done() (the summary, the trajectory, the counts, the LAS statistics, truth.csv's rows,
+  // flight.mcap's chunk) and counts the bytes as written. Writes no checkpoint: write_checkpoint()
+  // does, once every process's bytes are in the files. Throws owsim::Error for a frame out of
+  // order or without its flight.mcap chunk when flight.mcap is written.
   void add_placed_frame(const PlacedFrame& frame);
   // ORs the hits of the frames another Quicklook took (its QuicklookCheckpoint::map_mask) into
   // the map: a distributed run's processes each draw the hits and range images of their frames.
@@ -159,7 +159,8 @@ class FlightOutputs {
   std::unique_ptr<Quicklook> quicklook_;
   std::unique_ptr<FlightMcapFile> mcap_;
   FrameEncoder encoder_;
-  FrameEncoding encoding_;  // add_frame(frame, frame_start)'s, reused per frame
+  FrameEncoding encoding_;       // add_frame(frame, frame_start)'s, reused per frame
+  McapChunk placed_mcap_chunk_;  // add_placed_frame's flight.mcap chunk, reused per frame
   std::int64_t frames_done_ = 0;
   bool resumed_while_finishing_ = false;  // the checkpoint already describes the finished frames
   bool checkpoint_on_disk_ = false;       // this run wrote one, or resumed from one

@@ -47,7 +47,8 @@ struct FrameEncoding {
 // What a frame adds to the outputs besides its bytes, for FlightOutputs::add_placed_frame when
 // another process wrote those bytes into the files at their places (a distributed run,
 // distributed/). The bytes follow from it: the words of every pulse (and the HELLAS header word
-// before frame 0), csv_bytes of points.csv, 30 bytes a point of points.las, 29 of points.ply.
+// before frame 0), csv_bytes of points.csv, 30 bytes a point of points.las, 29 of points.ply;
+// truth.csv's and flight.mcap's it holds.
 struct PlacedFrame {
   std::int64_t frame = -1;
   Pose frame_start;
@@ -58,6 +59,9 @@ struct PlacedFrame {
   // truth.csv's rows of the frame, whole: process 0 appends them (a frame's are kilobytes).
   std::uint64_t truth_row_count = 0;
   std::string truth_rows;
+  // flight.mcap's chunk of the frame as McapChunk::append_finished lays it out: process 0 appends
+  // it (a frame's chunk is tens of kilobytes). Empty without flight.mcap.
+  std::string mcap_chunk;
 };
 
 }  // namespace owsim
