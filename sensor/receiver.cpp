@@ -180,6 +180,9 @@ void select_noisy_returns(std::span<Candidate> candidates, const ReceiverParams&
                           const PulseNoise& noise, PulseReturns& out) {
   set_no_returns(p, out);
   const ReceiverNoise& model = *noise.model;
+  // Most pulses that meet nothing: no false trigger in their whole group (the first test below).
+  if (candidates.empty() && model.group_has_no_trigger(noise.background, seed, frame, pulse))
+    return;
   const std::span<Candidate> registered(
       candidates.begin(),
       std::partition(candidates.begin(), candidates.end(), [&](const Candidate& c) {
