@@ -77,54 +77,98 @@ void record_solid(const EmbreeScene& scene, const ReceiverNoise& noise, const Pu
   }
 }
 
-// One Embree query over the block's rays, in the chosen form.
-void intersect_block(TraceApi api, RTCScene scene, TraceContext& context, RTCRayHit* rayhits,
-                     unsigned n) {
-  switch (api) {
-    case TraceApi::per_ray:
-      for (unsigned i = 0; i < n; ++i) rtcIntersect1(scene, &context.rtc, &rayhits[i]);
-      break;
-    case TraceApi::stream:
-      context.rtc.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-      rtcIntersect1M(scene, &context.rtc, rayhits, n, sizeof(RTCRayHit));
-      break;
-    case TraceApi::packet8:
-      context.rtc.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-      for (unsigned first = 0; first < n; first += 8) {
-        alignas(32) RTCRayHit8 packet;
-        alignas(32) int valid[8];
-        for (unsigned lane = 0; lane < 8; ++lane) {
-          const unsigned i = first + lane;
-          valid[lane] = i < n ? -1 : 0;
-          const RTCRayHit& source = rayhits[i < n ? i : first];
-          packet.ray.org_x[lane] = source.ray.org_x;
-          packet.ray.org_y[lane] = source.ray.org_y;
-          packet.ray.org_z[lane] = source.ray.org_z;
-          packet.ray.dir_x[lane] = source.ray.dir_x;
-          packet.ray.dir_y[lane] = source.ray.dir_y;
-          packet.ray.dir_z[lane] = source.ray.dir_z;
-          packet.ray.tnear[lane] = source.ray.tnear;
-          packet.ray.tfar[lane] = source.ray.tfar;
-          packet.ray.time[lane] = 0.0f;
-          packet.ray.mask[lane] = 0xFFFFFFFFu;
-          packet.ray.id[lane] = source.ray.id;
-          packet.ray.flags[lane] = 0;
-          packet.hit.geomID[lane] = kNoHit;
-          packet.hit.instID[0][lane] = kNoHit;
-        }
-        rtcIntersect8(valid, scene, &context.rtc, &packet);
-        for (unsigned lane = 0; lane < 8 && first + lane < n; ++lane) {
-          RTCRayHit& target = rayhits[first + lane];
-          target.ray.tfar = packet.ray.tfar[lane];
-          target.hit.geomID = packet.hit.geomID[lane];
-          target.hit.primID = packet.hit.primID[lane];
-          target.hit.u = packet.hit.u[lane];
-          target.hit.v = packet.hit.v[lane];
-        }
-      }
-      break;
+// A block's rays in the form its Embree query takes them: RTCRayHit records (per ray, stream) or
+// 8-ray packets (packet8), each ray written once in float and, between the two passes, only given
+// a new tfar and cleared of its hit (Embree changes nothing else of a ray).
+class BlockRays {
+ public:
+  explicit BlockRays(TraceApi api) : api_(api) {}
+
+  // Ray i of the block: the pulse's ray as floats, from 0 to tfar, no hit.
+  void set(unsigned i, const PulseRay& pulse, unsigned id, float tfar) {
+    if (api_ != TraceApi::packet8) {
+      set_ray(rayhits_[i].ray, pulse, id, tfar);
+      clear_hit(rayhits_[i].hit);
+      return;
+    }
+    RTCRayHit8& packet = packets_[i / 8];
+    const unsigned lane = i % 8;
+    packet.ray.org_x[lane] = static_cast<float>(pulse.origin_enu_m.x());
+    packet.ray.org_y[lane] = static_cast<float>(pulse.origin_enu_m.y());
+    packet.ray.org_z[lane] = static_cast<float>(pulse.origin_enu_m.z());
+    packet.ray.dir_x[lane] = static_cast<float>(pulse.dir_enu.x());
+    packet.ray.dir_y[lane] = static_cast<float>(pulse.dir_enu.y());
+    packet.ray.dir_z[lane] = static_cast<float>(pulse.dir_enu.z());
+    packet.ray.tnear[lane] = 0.0f;
+    packet.ray.tfar[lane] = tfar;
+    packet.ray.time[lane] = 0.0f;
+    packet.ray.mask[lane] = 0xFFFFFFFFu;  // Debian's Embree is built with ray masks
+    packet.ray.id[lane] = id;
+    packet.ray.flags[lane] = 0;
+    packet.hit.geomID[lane] = kNoHit;
+    packet.hit.instID[0][lane] = kNoHit;
   }
-}
+  // Ray i again from 0 to tfar, its hit cleared.
+  void restart(unsigned i, float tfar) {
+    if (api_ != TraceApi::packet8) {
+      rayhits_[i].ray.tfar = tfar;
+      clear_hit(rayhits_[i].hit);
+      return;
+    }
+    RTCRayHit8& packet = packets_[i / 8];
+    packet.ray.tfar[i % 8] = tfar;
+    packet.hit.geomID[i % 8] = kNoHit;
+    packet.hit.instID[0][i % 8] = kNoHit;
+  }
+  [[nodiscard]] unsigned id(unsigned i) const {
+    return api_ == TraceApi::packet8 ? packets_[i / 8].ray.id[i % 8] : rayhits_[i].ray.id;
+  }
+  [[nodiscard]] float tfar(unsigned i) const {
+    return api_ == TraceApi::packet8 ? packets_[i / 8].ray.tfar[i % 8] : rayhits_[i].ray.tfar;
+  }
+  // What record_solid reads of ray i's hit: geometry, primitive, u, v.
+  [[nodiscard]] RTCHit hit(unsigned i) const {
+    if (api_ != TraceApi::packet8) return rayhits_[i].hit;
+    const RTCHit8& packet = packets_[i / 8].hit;
+    RTCHit hit{};
+    hit.geomID = packet.geomID[i % 8];
+    hit.primID = packet.primID[i % 8];
+    hit.u = packet.u[i % 8];
+    hit.v = packet.v[i % 8];
+    return hit;
+  }
+
+  // One Embree query over rays [0, n), in the chosen form.
+  void intersect(RTCScene scene, TraceContext& context, unsigned n) {
+    switch (api_) {
+      case TraceApi::per_ray:
+        for (unsigned i = 0; i < n; ++i) rtcIntersect1(scene, &context.rtc, &rayhits_[i]);
+        break;
+      case TraceApi::stream:
+        context.rtc.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+        rtcIntersect1M(scene, &context.rtc, rayhits_.data(), n, sizeof(RTCRayHit));
+        break;
+      case TraceApi::packet8:
+        context.rtc.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+        for (unsigned first = 0; first < n; first += 8) {
+          alignas(32) int valid[8];
+          for (unsigned lane = 0; lane < 8; ++lane) valid[lane] = first + lane < n ? -1 : 0;
+          rtcIntersect8(valid, scene, &context.rtc, &packets_[first / 8]);
+        }
+        break;
+    }
+  }
+
+ private:
+  static void clear_hit(RTCHit& hit) {
+    hit.geomID = kNoHit;
+    hit.instID[0] = kNoHit;
+  }
+
+  TraceApi api_;
+  std::array<RTCRayHit, FrameTracer::kChunk> rayhits_;
+  std::array<RTCRayHit8, FrameTracer::kChunk / 8> packets_;
+};
 
 }  // namespace
 
@@ -160,7 +204,7 @@ void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const st
     throw Error("engine: rays, active flags and candidate buffers differ in size");
   }
   std::array<CylinderRecord, kChunk> cylinder_hits;
-  std::array<RTCRayHit, kChunk> rayhits;
+  BlockRays block_rays(api_);
   SurfaceEnergyBatch batch;
   static_assert(kChunk <= SurfaceEnergyBatch::kCapacity);
   const double max_range = timeout_range_m(scene_->receiver().counter);
@@ -183,41 +227,41 @@ void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const st
     for (unsigned id = block; id < block_end; ++id) {
       candidates[id].clear();
       if (active[id] == 0) continue;
-      set_ray(rayhits[n].ray, rays[id], id, tfar);
-      rayhits[n].hit.geomID = kNoHit;
-      rayhits[n].hit.instID[0] = kNoHit;
+      block_rays.set(n, rays[id], id, tfar);
       cylinder_hits[id - block].prim_id = kNoHit;
       ++n;
+    }
+    // A packet's unused lanes repeat its first ray (Embree skips them: they are not valid).
+    if (api_ == TraceApi::packet8) {
+      for (unsigned i = n; i % 8 != 0; ++i) {
+        const unsigned id = block_rays.id(i - i % 8);
+        block_rays.set(i, rays[id], id, tfar);
+      }
     }
 
     // Pass 1: the nearest solid (pole, tree, mesh, ground) along each central ray; the angles
     // and energies of the block's hits in one batch.
-    intersect_block(api_, scene_->solids(), context, rayhits.data(), n);
+    block_rays.intersect(scene_->solids(), context, n);
     if (work_ == TraceWork::traversal_only) {
       // The wire pass as far as Embree's own solid hit, with the same margin.
       for (unsigned i = 0; i < n; ++i) {
-        const unsigned id = rayhits[i].ray.id;
-        const bool solid = rayhits[i].hit.geomID != kNoHit;
-        const float wire_tfar =
-            solid ? std::min(tfar, EmbreeScene::wire_search_end(rayhits[i].ray.tfar)) : tfar;
-        set_ray(rayhits[i].ray, rays[id], id, wire_tfar);
-        rayhits[i].hit.geomID = kNoHit;
-        rayhits[i].hit.instID[0] = kNoHit;
+        const bool solid = block_rays.hit(i).geomID != kNoHit;
+        block_rays.restart(
+            i, solid ? std::min(tfar, EmbreeScene::wire_search_end(block_rays.tfar(i))) : tfar);
       }
-      intersect_block(api_, scene_->wires(), context, rayhits.data(), n);
+      block_rays.intersect(scene_->wires(), context, n);
       continue;
     }
     batch.clear();
     for (unsigned i = 0; i < n; ++i) {
-      const RTCRayHit& rayhit = rayhits[i];
-      const unsigned id = rayhit.ray.id;
-      record_solid(*scene_, noise_, rays[id], rayhit.hit, cylinder_hits[id - block], candidates[id],
-                   batch);
+      const unsigned id = block_rays.id(i);
+      record_solid(*scene_, noise_, rays[id], block_rays.hit(i), cylinder_hits[id - block],
+                   candidates[id], batch);
     }
     batch.evaluate();
     std::size_t slot = 0;
     for (unsigned i = 0; i < n; ++i) {
-      PulseCandidates& pulse = candidates[rayhits[i].ray.id];
+      PulseCandidates& pulse = candidates[block_rays.id(i)];
       if (pulse.has_solid()) pulse.complete_solid(batch.result(slot++));
     }
 
@@ -225,16 +269,12 @@ void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const st
     // hit; tfar reaches a float-safety margin beyond it (EmbreeScene::wire_search_end), so a
     // segment whose closest approach lies before the solid is always reported.
     for (unsigned i = 0; i < n; ++i) {
-      const unsigned id = rayhits[i].ray.id;
-      const PulseCandidates& pulse = candidates[id];
-      const float wire_tfar =
-          pulse.has_solid() ? std::min(tfar, EmbreeScene::wire_search_end(pulse.solid().range_m))
-                            : tfar;
-      set_ray(rayhits[i].ray, rays[id], id, wire_tfar);
-      rayhits[i].hit.geomID = kNoHit;
-      rayhits[i].hit.instID[0] = kNoHit;
+      const PulseCandidates& pulse = candidates[block_rays.id(i)];
+      block_rays.restart(
+          i, pulse.has_solid() ? std::min(tfar, EmbreeScene::wire_search_end(pulse.solid().range_m))
+                               : tfar);
     }
-    intersect_block(api_, scene_->wires(), context, rayhits.data(), n);
+    block_rays.intersect(scene_->wires(), context, n);
   }
 }
 
