@@ -19,7 +19,8 @@
 //             sensor/pulse_candidates.hpp to segments in front of the pulse's solid hit and
 //             rejects the hit so traversal continues. (Round curves, tried first, are 3-D
 //             capsules with the same reach, a far dearer test, and report entry and exit.)
-// Both scenes are built in robust mode (watertight triangles, conservative bounds).
+// The solids are built in robust mode (watertight triangles, conservative bounds); the wires, whose
+// capture radius holds a float-safety margin, are not (embree_scene.cpp new_scene).
 // Float coordinates are offsets from the scenario origin, converted from double once here.
 // The scene is immutable after construction and may be traced from any number of threads.
 #include <embree3/rtcore.h>
