@@ -28,7 +28,8 @@ FrameSimulator::FrameSimulator(const FrameSimulatorParams& params, const EmbreeS
       tracer_(scene, api, noise_),
       weather_(scene.scene().fog, scene.scene().fog_backscatter_ratio_sr,
                fog_object_index(scene.scene()), params.receiver),
-      named_objects_(named_object_count(scene.scene())) {
+      named_objects_(named_object_count(scene.scene())),
+      single_returns_(SingleReturnBatch(params.receiver, noise_.on())) {
   validate(params_.receiver);
 }
 
@@ -102,21 +103,55 @@ void FrameSimulator::receive_range(FrameResult& out, std::span<const PulseCandid
     }
     select_returns(met.gather(gathered), receiver, params_.seed, out.frame, k, returns, noise);
   };
-  // The first return's range-noise draws of a run of pulses at once, on vector lanes (the same
-  // bits as one at a time: geometry/keyed_random.hpp random_blocks).
+  // A run of pulses at once: the first return's range-noise draws on vector lanes (the same bits
+  // as one at a time: geometry/keyed_random.hpp random_blocks), then the common pulse — one
+  // surface, no wire, clear air, no false trigger in its group — decided by its echo alone over
+  // arrays (sensor/single_return_batch.hpp); the others, and any the batch leaves undecided, by
+  // the receiver's general path.
   const bool range_noise = range_noise_sigma_m(receiver) != 0.0;
   std::array<PhiloxBlock, kNoiseDrawsAhead> first_range_noise;
+  std::array<double, kNoiseDrawsAhead> first_normals;
+  std::array<std::int16_t, kNoiseDrawsAhead> batch_slot;
+  static_assert(kNoiseDrawsAhead <= SingleReturnBatch::kCapacity);
+  SingleReturnBatch& batch = single_returns_.local();
   for (int run = begin; run < end; run += static_cast<int>(kNoiseDrawsAhead)) {
     const int run_end = std::min(end, run + static_cast<int>(kNoiseDrawsAhead));
+    const auto run_size = static_cast<std::size_t>(run_end - run);
     if (range_noise) {
       random_blocks(params_.seed, out.frame, run, RandomPurpose::range_noise_first,
-                    std::span(first_range_noise.data(), static_cast<std::size_t>(run_end - run)));
+                    std::span(first_range_noise.data(), run_size));
+      first_block_normals(std::span(first_range_noise.data(), run_size),
+                          std::span(first_normals.data(), run_size));
     }
+    batch.clear();
+    for (int k = run; k < run_end; ++k) {
+      const auto at = static_cast<std::size_t>(k - run);
+      const PulseCandidates& met = candidates[static_cast<std::size_t>(k - begin)];
+      batch_slot[at] = -1;
+      if (out.active[static_cast<std::size_t>(k)] == 0 || !weather_.empty() ||
+          !met.wires().empty() || !met.has_solid()) {
+        continue;
+      }
+      if (noise_.on() &&
+          !noise_.group_has_no_trigger(met.solid_background(), params_.seed, out.frame, k)) {
+        continue;
+      }
+      batch_slot[at] = static_cast<std::int16_t>(
+          batch.add(met.solid(), met.solid_background(), range_noise ? first_normals[at] : 0.0));
+    }
+    batch.evaluate();
     for (int k = run; k < run_end; ++k) {
       const auto index = static_cast<std::size_t>(k);
+      const auto at = static_cast<std::size_t>(k - run);
       PulseReturns& returns = out.returns[index];
-      receive_pulse(k, index, returns,
-                    range_noise ? &first_range_noise[static_cast<std::size_t>(k - run)] : nullptr);
+      const int slot = batch_slot[at];
+      if (slot >= 0 &&
+          batch.outcome(static_cast<std::size_t>(slot)) != SingleReturnBatch::Outcome::undecided) {
+        batch.write(static_cast<std::size_t>(slot),
+                    candidates[static_cast<std::size_t>(k - begin)].solid(), returns);
+      } else {
+        receive_pulse(k, index, returns, range_noise ? &first_range_noise[at] : nullptr);
+      }
       // While the returns are in registers: no pass over the 88-byte records later.
       out.object_returns[index] = object_return_bits(returns, named_objects_);
     }

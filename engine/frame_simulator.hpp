@@ -19,6 +19,7 @@
 #include "sensor/receiver.hpp"
 #include "sensor/scan_params.hpp"
 #include "sensor/scan_pattern.hpp"
+#include "sensor/single_return_batch.hpp"
 #include "sensor/weather.hpp"
 
 namespace owsim {
@@ -90,6 +91,8 @@ class FrameSimulator {
   std::size_t named_objects_ = 0;  // the scene's named_object_count
   // Each worker's candidates for the block of lines it is tracing (simulate).
   mutable tbb::enumerable_thread_specific<std::vector<PulseCandidates>> block_candidates_;
+  // Each worker's batch of single-return pulses (receive_range).
+  mutable tbb::enumerable_thread_specific<SingleReturnBatch> single_returns_;
 };
 
 }  // namespace owsim

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #if defined(__x86_64__)
@@ -272,6 +273,19 @@ double uniform01(const RandomKey& key) {
 double uniform_pm1(const RandomKey& key) { return 2.0 * uniform01(key) - 1.0; }
 
 double standard_normal(const RandomKey& key) { return standard_normal(key, random_block(key)); }
+
+void first_block_normals(std::span<const PhiloxBlock> blocks, std::span<double> out) {
+  const Ziggurat& z = ziggurat();
+  const std::size_t n = std::min(blocks.size(), out.size());
+  for (std::size_t i = 0; i < n; ++i) {
+    // standard_normal's first test, on the same bits.
+    const std::uint64_t bits = join(blocks[i][0], blocks[i][1]);
+    const auto strip = static_cast<std::size_t>(bits & 0xFFu);
+    const std::uint64_t sign = (bits & 0x100u) << 55;
+    const double x = unit_interval(bits) * z.edge[strip];
+    out[i] = x < z.edge[strip + 1] ? signed_by(x, sign) : std::numeric_limits<double>::quiet_NaN();
+  }
+}
 
 double standard_normal(const RandomKey& key, const PhiloxBlock& first) {
   const Ziggurat& z = ziggurat();

@@ -68,6 +68,10 @@ struct RandomKey {
 // that block. The same value, bit for bit.
 [[nodiscard]] double standard_normal(const RandomKey& key, const PhiloxBlock& first);
 
+// standard_normal(key, blocks[i]) for every i whose draw ends in its first block's rectangle
+// (about 98.5 %: a table look-up, a multiply and a compare, over arrays), NaN for the others, which
+// the caller draws with standard_normal. The same value, bit for bit.
+void first_block_normals(std::span<const PhiloxBlock> blocks, std::span<double> out);
 // random_block of the keys (seed, frame, first_pulse + i, purpose) for every i < out.size(), the
 // same bits, computed for many pulses at once over vector lanes (AVX2 where the CPU has it): the
 // per-pulse draws of a block of pulses, batched.

@@ -12,8 +12,6 @@ namespace owsim {
 namespace {
 
 constexpr double kDegree = std::numbers::pi / 180.0;
-// |e − T| / σ_n beyond which Φ is 0 or 1 to below a 53-bit uniform's resolution (Φ(−8.5) ≈ 1e-17).
-constexpr double kSureDetection = 8.5;
 
 // The key's `pulse` field: the pulse in the low 32 bits, `extra` (an object, a draw number) in the
 // 24 bits above (geometry/keyed_random.hpp keeps 56 bits of it).
@@ -196,8 +194,8 @@ bool ReceiverNoise::echo_registers(double energy_rel, double range_m, double bac
   const double s = sigma(range_m, background);
   const double margin = energy_rel - threshold_;
   if (!(s > 0.0)) return margin >= 0.0;
-  if (margin > kSureDetection * s) return true;
-  if (margin < -kSureDetection * s) return false;
+  if (margin > kSureEchoSigmas * s) return true;
+  if (margin < -kSureEchoSigmas * s) return false;
   // u on (0, 1]: 1 − a [0, 1) uniform.
   const double u =
       1.0 - uniform01({seed, frame, pulse_with(pulse, object), RandomPurpose::echo_detection});

@@ -57,6 +57,10 @@ struct SunPosition {
 // b = k_sky · max(0, sin ε_sun)  (SENSOR-SPEC §11 sunlight)
 [[nodiscard]] double sky_background(const SunPosition& sun, double sky_noise);
 
+// |e − T| / σ_n beyond which Φ is 0 or 1 to below a 53-bit uniform's resolution (Φ(−8.5) ≈ 1e-17):
+// an echo that far from the threshold registers, or not, without a draw.
+inline constexpr double kSureEchoSigmas = 8.5;
+
 // A fog volume's busy interval [begin_m, end_m): no echo and no false trigger registers in it
 // (SENSOR-SPEC §10, §11 returns).
 struct BusyInterval {

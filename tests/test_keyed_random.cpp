@@ -290,5 +290,27 @@ TEST(KeyedRandom, BlocksOfPulsesAreEachPulsesOwnBlock) {
   }
 }
 
+// The receiver's batch takes the range-noise normals of a run of pulses from their blocks at
+// once: each is standard_normal's value where its draw ends in the first block, NaN where the
+// ziggurat needs more (its wedges and tail: about 1.5 % of draws).
+TEST(KeyedRandom, FirstBlockNormalsAreTheKeysNormals) {
+  constexpr int kPulses = 200'000;
+  std::vector<PhiloxBlock> blocks(kPulses);
+  std::vector<double> normals(kPulses);
+  random_blocks(42, 9, 0, RandomPurpose::range_noise_first, blocks);
+  first_block_normals(blocks, normals);
+  int unknown = 0;
+  for (int k = 0; k < kPulses; ++k) {
+    const double normal = normals[static_cast<std::size_t>(k)];
+    if (std::isnan(normal)) {
+      ++unknown;
+      continue;
+    }
+    ASSERT_EQ(normal, standard_normal({42, 9, k, RandomPurpose::range_noise_first})) << k;
+  }
+  EXPECT_GT(unknown, kPulses / 200);
+  EXPECT_LT(unknown, kPulses / 30);
+}
+
 }  // namespace
 }  // namespace owsim
