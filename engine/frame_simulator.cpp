@@ -17,6 +17,9 @@ namespace {
 constexpr int kLinesPerTask = 4;
 // Pulses whose first-return range-noise draws are made together, ahead of their receiver pass.
 constexpr std::size_t kNoiseDrawsAhead = 256;
+// A pulse's entry in receive_range's run when it is not a batch slot.
+constexpr std::int16_t kGeneralPath = -1;  // the receiver's general path
+constexpr std::int16_t kNoReturn = -2;     // met nothing and no false trigger: no return
 
 }  // namespace
 
@@ -106,8 +109,8 @@ void FrameSimulator::receive_range(FrameResult& out, std::span<const PulseCandid
   // A run of pulses at once: the first return's range-noise draws on vector lanes (the same bits
   // as one at a time: geometry/keyed_random.hpp random_blocks), then the common pulse — one
   // surface, no wire, clear air, no false trigger in its group — decided by its echo alone over
-  // arrays (sensor/single_return_batch.hpp); the others, and any the batch leaves undecided, by
-  // the receiver's general path.
+  // arrays (sensor/single_return_batch.hpp), one that met nothing has no return; the others, and
+  // any the batch leaves undecided, take the receiver's general path.
   const bool range_noise = range_noise_sigma_m(receiver) != 0.0;
   std::array<PhiloxBlock, kNoiseDrawsAhead> first_range_noise;
   std::array<double, kNoiseDrawsAhead> first_normals;
@@ -127,13 +130,17 @@ void FrameSimulator::receive_range(FrameResult& out, std::span<const PulseCandid
     for (int k = run; k < run_end; ++k) {
       const auto at = static_cast<std::size_t>(k - run);
       const PulseCandidates& met = candidates[static_cast<std::size_t>(k - begin)];
-      batch_slot[at] = -1;
+      batch_slot[at] = kGeneralPath;
       if (out.active[static_cast<std::size_t>(k)] == 0 || !weather_.empty() ||
-          !met.wires().empty() || !met.has_solid()) {
+          !met.wires().empty()) {
         continue;
       }
-      if (noise_.on() &&
-          !noise_.group_has_no_trigger(met.solid_background(), params_.seed, out.frame, k)) {
+      const double background = met.has_solid() ? met.solid_background() : noise_.sky_background();
+      if (noise_.on() && !noise_.group_has_no_trigger(background, params_.seed, out.frame, k)) {
+        continue;
+      }
+      if (!met.has_solid()) {  // nothing met, no false trigger: no return
+        batch_slot[at] = kNoReturn;
         continue;
       }
       batch_slot[at] = static_cast<std::int16_t>(
@@ -145,8 +152,10 @@ void FrameSimulator::receive_range(FrameResult& out, std::span<const PulseCandid
       const auto at = static_cast<std::size_t>(k - run);
       PulseReturns& returns = out.returns[index];
       const int slot = batch_slot[at];
-      if (slot >= 0 &&
-          batch.outcome(static_cast<std::size_t>(slot)) != SingleReturnBatch::Outcome::undecided) {
+      if (slot == kNoReturn) {
+        set_no_returns(receiver, returns);
+      } else if (slot >= 0 && batch.outcome(static_cast<std::size_t>(slot)) !=
+                                  SingleReturnBatch::Outcome::undecided) {
         batch.write(static_cast<std::size_t>(slot),
                     candidates[static_cast<std::size_t>(k - begin)].solid(), returns);
       } else {
