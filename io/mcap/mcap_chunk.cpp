@@ -4,58 +4,11 @@
 
 #include <algorithm>
 #include <cstring>
-#include <type_traits>
 
 #include "geometry/error.hpp"
+#include "io/files/host_bytes.hpp"
 
 namespace owsim {
-namespace {
-
-template <typename T>
-void put(std::string& out, const T& value) {
-  static_assert(std::is_trivially_copyable_v<T>);
-  out.append(reinterpret_cast<const char*>(&value), sizeof value);
-}
-
-// Reads what put() wrote; throws owsim::Error when the bytes end first.
-class Reader {
- public:
-  explicit Reader(std::string_view bytes) : bytes_(bytes) {}
-  template <typename T>
-  void get(T& value) {
-    static_assert(std::is_trivially_copyable_v<T>);
-    get_bytes(&value, sizeof value);
-  }
-  // `count` values of T, the count read first.
-  template <typename T>
-  void get_vector(std::vector<T>& values) {
-    std::uint64_t count = 0;
-    get(count);
-    if (count > bytes_.size() / sizeof(T)) fail();
-    values.resize(static_cast<std::size_t>(count));
-    get_bytes(values.data(), values.size() * sizeof(T));
-  }
-  [[nodiscard]] bool empty() const { return bytes_.empty(); }
-
- private:
-  void get_bytes(void* to, std::size_t size) {
-    if (bytes_.size() < size) fail();
-    if (size > 0) std::memcpy(to, bytes_.data(), size);
-    bytes_.remove_prefix(size);
-  }
-  [[noreturn]] static void fail() { throw Error("MCAP chunk: the bytes end inside a chunk"); }
-
-  std::string_view bytes_;
-};
-
-template <typename T>
-void put_vector(std::string& out, const std::vector<T>& values) {
-  static_assert(std::is_trivially_copyable_v<T>);
-  put(out, static_cast<std::uint64_t>(values.size()));
-  out.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
-}
-
-}  // namespace
 
 // zstd's compression context, reused from chunk to chunk.
 class McapChunk::Compressor {
@@ -188,26 +141,26 @@ void McapChunk::finish() {
 
 void McapChunk::append_finished(std::string& out) const {
   if (!finished_) throw Error("MCAP chunk: sent before it was finished");
-  put(out, compression_);
-  put(out, message_count_);
-  put(out, start_time_);
-  put(out, end_time_);
-  put(out, crc_);
-  put(out, static_cast<std::uint64_t>(chunk_record_size_));
-  put(out, compressed_size_);
-  put(out, static_cast<std::uint64_t>(uncompressed_size_));
-  put_vector(out, channels_);
-  put(out, static_cast<std::uint64_t>(message_index_offsets_.size()));
+  put_host_bytes(out, compression_);
+  put_host_bytes(out, message_count_);
+  put_host_bytes(out, start_time_);
+  put_host_bytes(out, end_time_);
+  put_host_bytes(out, crc_);
+  put_host_bytes(out, static_cast<std::uint64_t>(chunk_record_size_));
+  put_host_bytes(out, compressed_size_);
+  put_host_bytes(out, static_cast<std::uint64_t>(uncompressed_size_));
+  put_host_vector(out, channels_);
+  put_host_bytes(out, static_cast<std::uint64_t>(message_index_offsets_.size()));
   for (const auto& [channel_id, offset] : message_index_offsets_) {
-    put(out, channel_id);
-    put(out, offset);
+    put_host_bytes(out, channel_id);
+    put_host_bytes(out, offset);
   }
-  put_vector(out, bytes_);
+  put_host_vector(out, bytes_);
 }
 
 void McapChunk::read_finished(std::string_view bytes) {
   clear();
-  Reader in(bytes);
+  HostBytesReader in(bytes, "MCAP chunk: the bytes end inside a chunk");
   McapCompression compression = compression_;
   in.get(compression);
   // A chunk stays what it was made: the compression of the chunks it builds after clear().
