@@ -126,14 +126,7 @@ void record_returns(const Candidate* const (&chosen)[2], const ReceiverParams& p
     const double range = noisy_range_m(c.range_m, sigma, normal);
     const std::uint16_t counter = counters.counter(range);
     if (counter >= p.counter.timeout_counts) continue;
-    Return& r = out.returns[out.count++];
-    r.range_m = std::max(range, 0.0);
-    r.energy_rel = c.energy_rel;
-    r.incidence_deg = c.incidence_deg;
-    r.true_range_m = c.range_m;
-    r.object_index = c.object_index;
-    r.counter = counter;
-    r.surface = c.surface;
+    out.returns[out.count++] = return_of(c, std::max(range, 0.0), counter);
   }
   if (out.count == 2 && out.returns[1].range_m < out.returns[0].range_m) {
     std::swap(out.returns[0], out.returns[1]);

@@ -90,6 +90,13 @@ struct PulseReturns {
   Return returns[2];
 };
 
+// The return a candidate becomes at its noisy range (≥ 0) and counter: its energy, incidence,
+// true range, object and class carried through (SENSOR-SPEC §1, §7).
+[[nodiscard]] inline Return return_of(const Candidate& c, double range_m, std::uint16_t counter) {
+  return Return{range_m,        c.energy_rel, c.incidence_deg, c.range_m,
+                c.object_index, counter,      c.surface};
+}
+
 // The receiver's statistics for these parameters: threshold, noise keys, sun, and the gate from 0
 // to the counter's timeout range with light at c / n_air  (SENSOR-SPEC §11)
 [[nodiscard]] ReceiverNoise receiver_noise(const ReceiverParams& p);

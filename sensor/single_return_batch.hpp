@@ -46,16 +46,10 @@ class SingleReturnBatch {
     out.count = 0;
     out.counter1 = out.counter2 = timeout_counts_;
     if (outcome(slot) != Outcome::one_return) return;
-    Return& r = out.returns[0];
-    r.range_m = noisy_range_m_[slot];
-    r.energy_rel = candidate.energy_rel;
-    r.incidence_deg = candidate.incidence_deg;
-    r.true_range_m = candidate.range_m;
-    r.object_index = candidate.object_index;
-    r.counter = static_cast<std::uint16_t>(counts_[slot]);
-    r.surface = candidate.surface;
+    const auto counter = static_cast<std::uint16_t>(counts_[slot]);
+    out.returns[0] = return_of(candidate, noisy_range_m_[slot], counter);
     out.count = 1;
-    out.counter1 = r.counter;
+    out.counter1 = counter;
   }
 
  private:
