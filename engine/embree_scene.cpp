@@ -1,5 +1,6 @@
 #include "engine/embree_scene.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -22,6 +23,11 @@ constexpr double kCaptureMarginAbsolute_m = 1e-3;
 // this far beyond the solid hit so the exact range comparison in the filter decides.
 constexpr double kDepthMarginRelative = 1e-5;
 constexpr double kDepthMarginAbsolute_m = 1e-3;
+// The wires' bounds reach this far beyond every capture radius (plus 1e-5 of the largest
+// coordinate and range): float rounding moves a ray by micrometres per metre of its offsets, so a
+// ray that misses these bounds in double misses every flat curve in float.
+constexpr double kBoundsMargin_m = 1.0;
+constexpr double kBoundsMarginRelative = 1e-5;
 
 // Intersection filter of a conductor: the exact §7 wire test in double precision; the hit is
 // recorded as a candidate and always rejected so traversal goes on to what lies behind. The wire
@@ -195,6 +201,9 @@ void EmbreeScene::attach_conductors(const EmbreeDevice& device) {
     wire_segments_.first_segment[c] = static_cast<std::uint32_t>(segment);
     for (std::size_t p = 0; p < conductor.points_enu_m.size(); ++p, ++vertex) {
       const Eigen::Vector3d& point = conductor.points_enu_m[p];
+      const Eigen::Vector3d reach = Eigen::Vector3d::Constant(static_cast<double>(radius));
+      wire_bounds_.extend(point - reach);
+      wire_bounds_.extend(point + reach);
       vertices[4 * vertex + 0] = static_cast<float>(point.x());
       vertices[4 * vertex + 1] = static_cast<float>(point.y());
       vertices[4 * vertex + 2] = static_cast<float>(point.z());
@@ -205,6 +214,11 @@ void EmbreeScene::attach_conductors(const EmbreeDevice& device) {
       ++segment;
     }
   }
+  const double largest =
+      std::max(wire_bounds_.min().cwiseAbs().maxCoeff(), wire_bounds_.max().cwiseAbs().maxCoeff());
+  const Eigen::Vector3d margin =
+      Eigen::Vector3d::Constant(kBoundsMargin_m + kBoundsMarginRelative * (largest + max_range_m_));
+  wire_bounds_ = Eigen::AlignedBox3d(wire_bounds_.min() - margin, wire_bounds_.max() + margin);
   rtcSetGeometryUserData(geometry, &wire_segments_);
   rtcSetGeometryIntersectFilterFunction(geometry, conductor_filter);
   rtcCommitGeometry(geometry);

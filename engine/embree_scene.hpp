@@ -76,6 +76,9 @@ class EmbreeScene {
   [[nodiscard]] const WireSegments& wire_segments() const { return wire_segments_; }
   // r_wire + r_beam(max range), widened by the float-safety margin.
   [[nodiscard]] double capture_radius_m(const Conductor& conductor) const;
+  // Bounds of every conductor's flat curve, widened by a float-safety margin: a pulse's ray
+  // that misses them in double cannot meet a wire in Embree's float test (empty: no conductors).
+  [[nodiscard]] const Eigen::AlignedBox3d& wire_bounds() const { return wire_bounds_; }
   // The wire pass's tfar for a pulse whose solid hit lies at `solid_range_m`: a little beyond it,
   // so float rounding of a reported segment depth cannot hide a segment in front of the solid.
   [[nodiscard]] static float wire_search_end(double solid_range_m);
@@ -107,6 +110,7 @@ class EmbreeScene {
   ReceiverParams receiver_;
   double max_range_m_;
   Eigen::AlignedBox2d region_;
+  Eigen::AlignedBox3d wire_bounds_;
   TriangleMesh terrain_triangles_;  // a flat or grid terrain
   // Each triangle's edges and normal, computed once (geometry/ray_triangle.hpp): of the flat or
   // grid terrain, of a DEM's patches, and of each mesh by geomID.

@@ -10,6 +10,7 @@
 #include "engine/flush_to_zero.hpp"
 #include "engine/trace_context.hpp"
 #include "geometry/error.hpp"
+#include "geometry/ray_box.hpp"
 #include "geometry/ray_triangle.hpp"
 #include "sensor/range_counter.hpp"
 
@@ -86,6 +87,7 @@ class BlockRays {
 
   // Ray i of the block: the pulse's ray as floats, from 0 to tfar, no hit.
   void set(unsigned i, const PulseRay& pulse, unsigned id, float tfar) {
+    traced_[i] = 1;
     if (api_ != TraceApi::packet8) {
       set_ray(rayhits_[i].ray, pulse, id, tfar);
       clear_hit(rayhits_[i].hit);
@@ -108,10 +110,13 @@ class BlockRays {
     packet.hit.geomID[lane] = kNoHit;
     packet.hit.instID[0][lane] = kNoHit;
   }
-  // Ray i again from 0 to tfar, its hit cleared.
-  void restart(unsigned i, float tfar) {
+  // Ray i again from 0 to tfar, its hit cleared; `traced` false leaves it out of the next query.
+  void restart(unsigned i, float tfar, bool traced) {
+    traced_[i] = traced ? 1 : 0;
     if (api_ != TraceApi::packet8) {
       rayhits_[i].ray.tfar = tfar;
+      // A stream leaves out a ray whose tnear lies beyond its tfar.
+      rayhits_[i].ray.tnear = traced ? 0.0f : std::numeric_limits<float>::infinity();
       clear_hit(rayhits_[i].hit);
       return;
     }
@@ -138,11 +143,14 @@ class BlockRays {
     return hit;
   }
 
-  // One Embree query over rays [0, n), in the chosen form.
+  // One Embree query over the traced rays of [0, n), in the chosen form; a packet without one
+  // is not handed to Embree at all.
   void intersect(RTCScene scene, TraceContext& context, unsigned n) {
     switch (api_) {
       case TraceApi::per_ray:
-        for (unsigned i = 0; i < n; ++i) rtcIntersect1(scene, &context.rtc, &rayhits_[i]);
+        for (unsigned i = 0; i < n; ++i) {
+          if (traced_[i] != 0) rtcIntersect1(scene, &context.rtc, &rayhits_[i]);
+        }
         break;
       case TraceApi::stream:
         context.rtc.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
@@ -152,8 +160,12 @@ class BlockRays {
         context.rtc.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
         for (unsigned first = 0; first < n; first += 8) {
           alignas(32) int valid[8];
-          for (unsigned lane = 0; lane < 8; ++lane) valid[lane] = first + lane < n ? -1 : 0;
-          rtcIntersect8(valid, scene, &context.rtc, &packets_[first / 8]);
+          int any = 0;
+          for (unsigned lane = 0; lane < 8; ++lane) {
+            valid[lane] = first + lane < n && traced_[first + lane] != 0 ? -1 : 0;
+            any |= valid[lane];
+          }
+          if (any != 0) rtcIntersect8(valid, scene, &context.rtc, &packets_[first / 8]);
         }
         break;
     }
@@ -166,6 +178,7 @@ class BlockRays {
   }
 
   TraceApi api_;
+  std::array<std::uint8_t, FrameTracer::kChunk> traced_{};
   std::array<RTCRayHit, FrameTracer::kChunk> rayhits_;
   std::array<RTCRayHit8, FrameTracer::kChunk / 8> packets_;
 };
@@ -209,6 +222,11 @@ void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const st
   static_assert(kChunk <= SurfaceEnergyBatch::kCapacity);
   const double max_range = timeout_range_m(scene_->receiver().counter);
   const auto tfar = static_cast<float>(max_range);
+  // Whether the ray can meet a wire before `end` (EmbreeScene::wire_bounds).
+  const Eigen::AlignedBox3d& wires = scene_->wire_bounds();
+  const auto meets_wires = [&wires](const PulseRay& ray, float search_end) {
+    return ray_meets_box(wires, ray.origin_enu_m, ray.dir_enu, static_cast<double>(search_end));
+  };
 
   for (unsigned block = begin; block < end; block += kChunk) {
     const unsigned block_end = std::min(end, block + kChunk);
@@ -243,11 +261,12 @@ void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const st
     // and energies of the block's hits in one batch.
     block_rays.intersect(scene_->solids(), context, n);
     if (work_ == TraceWork::traversal_only) {
-      // The wire pass as far as Embree's own solid hit, with the same margin.
+      // The wire pass as far as Embree's own solid hit, with the same margin and cull.
       for (unsigned i = 0; i < n; ++i) {
         const bool solid = block_rays.hit(i).geomID != kNoHit;
-        block_rays.restart(
-            i, solid ? std::min(tfar, EmbreeScene::wire_search_end(block_rays.tfar(i))) : tfar);
+        const float search_end =
+            solid ? std::min(tfar, EmbreeScene::wire_search_end(block_rays.tfar(i))) : tfar;
+        block_rays.restart(i, search_end, meets_wires(rays[block_rays.id(i)], search_end));
       }
       block_rays.intersect(scene_->wires(), context, n);
       continue;
@@ -267,12 +286,15 @@ void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const st
 
     // Pass 2: the wires in front of it. The filter offers only segments nearer than the solid
     // hit; tfar reaches a float-safety margin beyond it (EmbreeScene::wire_search_end), so a
-    // segment whose closest approach lies before the solid is always reported.
+    // segment whose closest approach lies before the solid is always reported. A ray that misses
+    // the wires' bounds up to there is left out: Embree's own test of its root costs a call.
     for (unsigned i = 0; i < n; ++i) {
-      const PulseCandidates& pulse = candidates[block_rays.id(i)];
-      block_rays.restart(
-          i, pulse.has_solid() ? std::min(tfar, EmbreeScene::wire_search_end(pulse.solid().range_m))
-                               : tfar);
+      const unsigned id = block_rays.id(i);
+      const PulseCandidates& pulse = candidates[id];
+      const float search_end =
+          pulse.has_solid() ? std::min(tfar, EmbreeScene::wire_search_end(pulse.solid().range_m))
+                            : tfar;
+      block_rays.restart(i, search_end, meets_wires(rays[id], search_end));
     }
     block_rays.intersect(scene_->wires(), context, n);
   }

@@ -4,7 +4,8 @@
 // forms, so benchmarks can compare them. Each chunk is traced twice: first against the solids
 // (the central ray's nearest pole, tree or ground hit), then against the wires up to that hit, so
 // each conductor's candidate is its strongest segment in front of the solid (SENSOR-SPEC §7
-// pinned occlusion) however Embree orders its visits. Every pulse's result depends only on its own
+// pinned occlusion) however Embree orders its visits; a ray that misses the wires' bounds up to
+// its solid hit is not handed to the wire pass at all. Every pulse's result depends only on its own
 // ray, so the output is bit-identical whatever the thread count or the API.
 #include <cstdint>
 #include <span>
@@ -26,8 +27,8 @@ enum class TraceApi {
 // What the tracer does with Embree's hits. `traversal_only` is a yardstick (`owsim bench`): the
 // same two queries against the same BVHs, the callbacks reduced to recording the hit — the
 // cylinders' exact test still decides their hits, the wire filter rejects every segment unread,
-// the wire pass reaches as far as Embree's solid hit — and no candidates. What remains of a
-// pulse's cost is Embree's traversal.
+// the wire pass reaches as far as Embree's solid hit, culled the same way — and no candidates. What
+// remains of a pulse's cost is Embree's traversal.
 enum class TraceWork { candidates, traversal_only };
 
 class FrameTracer {
