@@ -20,6 +20,13 @@ void clip_to_slab(double origin, double dir, double low, double high, double& en
 bool ray_meets_box(const Eigen::AlignedBox3d& box, const Eigen::Vector3d& origin,
                    const Eigen::Vector3d& dir, double t_max) {
   if (box.isEmpty()) return false;
+  // Most misses without a division: both ends of the stretch beyond the same face (the end
+  // rounded, which moves it by ~1e-16 of its coordinates).
+  const Eigen::Vector3d end = origin + t_max * dir;
+  if ((origin.array() < box.min().array() && end.array() < box.min().array()).any() ||
+      (origin.array() > box.max().array() && end.array() > box.max().array()).any()) {
+    return false;
+  }
   double enter = 0.0;
   double exit = t_max;
   for (int axis = 0; axis < 3; ++axis) {
