@@ -211,6 +211,41 @@ TEST(ScanPattern, TimeTagsAreTheTickCountModuloTheRangeAtAnyMagnitude) {
   }
 }
 
+// milows_time_tags (the words' vectorised tags) gives milows_time_tag's value for every time: a
+// whole flight's pulse times, ticks and their neighbours a hair either side, −0, negative times,
+// every magnitude up to and beyond 2^62 ticks, blocks not a multiple of the lanes; throws where it
+// throws.
+TEST(ScanPattern, TimeTagsOverArraysAreTheTimeTags) {
+  std::vector<double> times;
+  const ScanParams p;
+  for (std::int64_t frame : {0, 1, 400'000}) {
+    for (int k = 0; k < p.pulses_per_frame(); ++k) times.push_back(pulse_time_s(p, frame, k));
+  }
+  for (std::int64_t tick = -70'000; tick < 140'000; tick += 7) {
+    const double t = static_cast<double>(tick) * 1e-4;
+    times.insert(times.end(), {t, std::nextafter(t, -INFINITY), std::nextafter(t, INFINITY)});
+  }
+  times.insert(times.end(), {0.0, -0.0, 0.57, 0.0003, 100.57, 6.5536, -0.00005, 1e-300, -1e-300});
+  for (double t = 1e-6; t < 1e22; t *= 1.37) times.insert(times.end(), {t, -t});
+  const double edge = 0x1p62 * 1e-4;  // 2^62 ticks
+  for (const double t : {edge, -edge, std::nextafter(edge, 0.0), std::nextafter(edge, INFINITY)}) {
+    times.push_back(t);
+  }
+  while (times.size() % 256 != 253) times.push_back(0.5);  // a last block of 253
+  std::vector<std::uint16_t> tags(times.size());
+  milows_time_tags(times, tags);
+  for (std::size_t i = 0; i < times.size(); ++i) {
+    ASSERT_EQ(tags[i], milows_time_tag(times[i])) << "t = " << times[i];
+  }
+  std::vector<double> bad(300, 1.0);
+  bad[257] = std::nan("");
+  std::vector<std::uint16_t> bad_tags(bad.size());
+  EXPECT_THROW(milows_time_tags(bad, bad_tags), Error);
+  bad[257] = -INFINITY;
+  EXPECT_THROW(milows_time_tags(bad, bad_tags), Error);
+  EXPECT_THROW(milows_time_tags(bad, std::span(bad_tags).first(3)), Error);
+}
+
 TEST(ScanPattern, JitterIsKeyedBySeedAndFrame) {
   const ScanParams p;
   std::set<double> starts;

@@ -1,5 +1,8 @@
 #include "io/recording/frame_words.hpp"
 
+#include <algorithm>
+#include <array>
+
 #include "geometry/error.hpp"
 #include "io/recording/hellas_word.hpp"
 #include "io/recording/milows_word.hpp"
@@ -19,16 +22,25 @@ void require_same_size(std::size_t pulses, std::size_t returns, std::size_t out)
 void pack_milows_frame(std::span<const Pulse> pulses, std::span<const PulseReturns> returns,
                        std::span<std::uint64_t> out) {
   require_same_size(pulses.size(), returns.size(), out.size());
-  for (std::size_t k = 0; k < pulses.size(); ++k) {
-    const Pulse& pulse = pulses[k];
-    MilowsWord word;
-    word.time_tag = milows_time_tag(pulse.time_s);
-    word.encoder = pulse.encoder;
-    word.frame_gate = pulse.frame_gate;
-    word.line_gate = pulse.line_gate;
-    word.counter1 = returns[k].counter1;
-    word.counter2 = returns[k].counter2;
-    out[k] = pack(word);
+  // The time tags of a block of pulses at once (vectorised), then the words.
+  constexpr std::size_t kBlock = 256;
+  std::array<double, kBlock> times;
+  std::array<std::uint16_t, kBlock> tags;
+  for (std::size_t first = 0; first < pulses.size(); first += kBlock) {
+    const std::size_t n = std::min(kBlock, pulses.size() - first);
+    for (std::size_t i = 0; i < n; ++i) times[i] = pulses[first + i].time_s;
+    milows_time_tags(std::span(times.data(), n), std::span(tags.data(), n));
+    for (std::size_t i = 0; i < n; ++i) {
+      const Pulse& pulse = pulses[first + i];
+      MilowsWord word;
+      word.time_tag = tags[i];
+      word.encoder = pulse.encoder;
+      word.frame_gate = pulse.frame_gate;
+      word.line_gate = pulse.line_gate;
+      word.counter1 = returns[first + i].counter1;
+      word.counter2 = returns[first + i].counter2;
+      out[first + i] = pack(word);
+    }
   }
 }
 

@@ -8,7 +8,9 @@
 // stored little-endian on disk (io/recording/word_file.hpp).
 #include <cstdint>
 
+#include "io/recording/word_field.hpp"
 #include "sensor/motor_encoder.hpp"
+#include "sensor/range_counter.hpp"
 
 namespace owsim {
 
@@ -29,9 +31,39 @@ struct MilowsWord {
   bool operator==(const MilowsWord&) const = default;
 };
 
+// Where each field sits in the word (table 4).
+namespace milows_bits {
+inline constexpr int kTimeTagShift = 48;
+inline constexpr int kEncoderShift = 32;
+inline constexpr int kFrameGateBit = 31;
+inline constexpr int kLineGateBit = 30;
+inline constexpr int kCrosstalkBit = 29;
+inline constexpr int kReservedBit = 28;
+inline constexpr int kCounter2Shift = 16;
+inline constexpr int kLutShift = 14;
+inline constexpr int kTriggerShift = 12;
+inline constexpr std::uint64_t kCounterMask = 0xFFF;
+inline constexpr std::uint64_t kTwoBitMask = 0x3;
+}  // namespace milows_bits
+
 // The 64-bit word  (SENSOR-SPEC §8, table 4). Throws owsim::Error when a counter exceeds 4095 or
-// LUT/trigger exceeds 3.
-[[nodiscard]] std::uint64_t pack(const MilowsWord& word);
+// LUT/trigger exceeds 3. Inline: a frame packs one a pulse.
+[[nodiscard]] inline std::uint64_t pack(const MilowsWord& word) {
+  using namespace milows_bits;
+  require_field_width("MilOWS", "counter 1", word.counter1, kCounterMax);
+  require_field_width("MilOWS", "counter 2", word.counter2, kCounterMax);
+  require_field_width("MilOWS", "LUT", word.lut, kMilowsTwoBitMax);
+  require_field_width("MilOWS", "trigger", word.trigger, kMilowsTwoBitMax);
+  const auto flag = [](bool value, int bit) { return static_cast<std::uint64_t>(value) << bit; };
+  const auto encoder_bits = static_cast<std::uint16_t>(word.encoder);
+  return static_cast<std::uint64_t>(word.time_tag) << kTimeTagShift |
+         static_cast<std::uint64_t>(encoder_bits) << kEncoderShift |
+         flag(word.frame_gate, kFrameGateBit) | flag(word.line_gate, kLineGateBit) |
+         flag(word.crosstalk, kCrosstalkBit) | flag(word.reserved28, kReservedBit) |
+         static_cast<std::uint64_t>(word.counter2) << kCounter2Shift |
+         static_cast<std::uint64_t>(word.lut) << kLutShift |
+         static_cast<std::uint64_t>(word.trigger) << kTriggerShift | word.counter1;
+}
 // The fields of a 64-bit word  (SENSOR-SPEC §8, table 4); total: every value decodes.
 [[nodiscard]] MilowsWord unpack_milows(std::uint64_t bits);
 
