@@ -222,10 +222,16 @@ void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const st
   static_assert(kChunk <= SurfaceEnergyBatch::kCapacity);
   const double max_range = timeout_range_m(scene_->receiver().counter);
   const auto tfar = static_cast<float>(max_range);
-  // Whether the ray can meet a wire before `end` (EmbreeScene::wire_bounds).
-  const Eigen::AlignedBox3d& wires = scene_->wire_bounds();
-  const auto meets_wires = [&wires](const PulseRay& ray, float search_end) {
-    return ray_meets_box(wires, ray.origin_enu_m, ray.dir_enu, static_cast<double>(search_end));
+  // The wire pass's rays as arrays, and which of them can meet a wire (EmbreeScene::wire_bounds).
+  RayArrays wire_rays;
+  std::array<std::uint8_t, kChunk> meets_wires;
+  static_assert(kChunk <= RayArrays::kCapacity);
+  const auto set_wire_ray = [&wire_rays](unsigned i, const PulseRay& ray, float search_end) {
+    for (int axis = 0; axis < 3; ++axis) {
+      wire_rays.origin[axis][i] = ray.origin_enu_m[axis];
+      wire_rays.dir[axis][i] = ray.dir_enu[axis];
+    }
+    wire_rays.t_max[i] = static_cast<double>(search_end);
   };
 
   for (unsigned block = begin; block < end; block += kChunk) {
@@ -264,9 +270,13 @@ void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const st
       // The wire pass as far as Embree's own solid hit, with the same margin and cull.
       for (unsigned i = 0; i < n; ++i) {
         const bool solid = block_rays.hit(i).geomID != kNoHit;
-        const float search_end =
-            solid ? std::min(tfar, EmbreeScene::wire_search_end(block_rays.tfar(i))) : tfar;
-        block_rays.restart(i, search_end, meets_wires(rays[block_rays.id(i)], search_end));
+        set_wire_ray(
+            i, rays[block_rays.id(i)],
+            solid ? std::min(tfar, EmbreeScene::wire_search_end(block_rays.tfar(i))) : tfar);
+      }
+      rays_meet_box(scene_->wire_bounds(), wire_rays, n, meets_wires.data());
+      for (unsigned i = 0; i < n; ++i) {
+        block_rays.restart(i, static_cast<float>(wire_rays.t_max[i]), meets_wires[i] != 0);
       }
       block_rays.intersect(scene_->wires(), context, n);
       continue;
@@ -291,10 +301,14 @@ void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const st
     for (unsigned i = 0; i < n; ++i) {
       const unsigned id = block_rays.id(i);
       const PulseCandidates& pulse = candidates[id];
-      const float search_end =
-          pulse.has_solid() ? std::min(tfar, EmbreeScene::wire_search_end(pulse.solid().range_m))
-                            : tfar;
-      block_rays.restart(i, search_end, meets_wires(rays[id], search_end));
+      set_wire_ray(i, rays[id],
+                   pulse.has_solid()
+                       ? std::min(tfar, EmbreeScene::wire_search_end(pulse.solid().range_m))
+                       : tfar);
+    }
+    rays_meet_box(scene_->wire_bounds(), wire_rays, n, meets_wires.data());
+    for (unsigned i = 0; i < n; ++i) {
+      block_rays.restart(i, static_cast<float>(wire_rays.t_max[i]), meets_wires[i] != 0);
     }
     block_rays.intersect(scene_->wires(), context, n);
   }
