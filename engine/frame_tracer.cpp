@@ -222,16 +222,26 @@ void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const st
   static_assert(kChunk <= SurfaceEnergyBatch::kCapacity);
   const double max_range = timeout_range_m(scene_->receiver().counter);
   const auto tfar = static_cast<float>(max_range);
-  // The wire pass's rays as arrays, and which of them can meet a wire (EmbreeScene::wire_bounds).
+  // The wire pass over the block's n rays, ray i searched up to search_end(i); a ray that misses
+  // the wires' bounds up to there is left out (EmbreeScene::wire_bounds): Embree's own test of
+  // its root costs a call.
   RayArrays wire_rays;
   std::array<std::uint8_t, kChunk> meets_wires;
   static_assert(kChunk <= RayArrays::kCapacity);
-  const auto set_wire_ray = [&wire_rays](unsigned i, const PulseRay& ray, float search_end) {
-    for (int axis = 0; axis < 3; ++axis) {
-      wire_rays.origin[axis][i] = ray.origin_enu_m[axis];
-      wire_rays.dir[axis][i] = ray.dir_enu[axis];
+  const auto trace_wires = [&](TraceContext& context, unsigned n, const auto& search_end) {
+    for (unsigned i = 0; i < n; ++i) {
+      const PulseRay& ray = rays[block_rays.id(i)];
+      for (int axis = 0; axis < 3; ++axis) {
+        wire_rays.origin[axis][i] = ray.origin_enu_m[axis];
+        wire_rays.dir[axis][i] = ray.dir_enu[axis];
+      }
+      wire_rays.t_max[i] = static_cast<double>(search_end(i));
     }
-    wire_rays.t_max[i] = static_cast<double>(search_end);
+    rays_meet_box(scene_->wire_bounds(), wire_rays, n, meets_wires.data());
+    for (unsigned i = 0; i < n; ++i) {
+      block_rays.restart(i, static_cast<float>(wire_rays.t_max[i]), meets_wires[i] != 0);
+    }
+    block_rays.intersect(scene_->wires(), context, n);
   };
 
   for (unsigned block = begin; block < end; block += kChunk) {
@@ -268,17 +278,10 @@ void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const st
     block_rays.intersect(scene_->solids(), context, n);
     if (work_ == TraceWork::traversal_only) {
       // The wire pass as far as Embree's own solid hit, with the same margin and cull.
-      for (unsigned i = 0; i < n; ++i) {
+      trace_wires(context, n, [&](unsigned i) {
         const bool solid = block_rays.hit(i).geomID != kNoHit;
-        set_wire_ray(
-            i, rays[block_rays.id(i)],
-            solid ? std::min(tfar, EmbreeScene::wire_search_end(block_rays.tfar(i))) : tfar);
-      }
-      rays_meet_box(scene_->wire_bounds(), wire_rays, n, meets_wires.data());
-      for (unsigned i = 0; i < n; ++i) {
-        block_rays.restart(i, static_cast<float>(wire_rays.t_max[i]), meets_wires[i] != 0);
-      }
-      block_rays.intersect(scene_->wires(), context, n);
+        return solid ? std::min(tfar, EmbreeScene::wire_search_end(block_rays.tfar(i))) : tfar;
+      });
       continue;
     }
     batch.clear();
@@ -296,21 +299,12 @@ void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const st
 
     // Pass 2: the wires in front of it. The filter offers only segments nearer than the solid
     // hit; tfar reaches a float-safety margin beyond it (EmbreeScene::wire_search_end), so a
-    // segment whose closest approach lies before the solid is always reported. A ray that misses
-    // the wires' bounds up to there is left out: Embree's own test of its root costs a call.
-    for (unsigned i = 0; i < n; ++i) {
-      const unsigned id = block_rays.id(i);
-      const PulseCandidates& pulse = candidates[id];
-      set_wire_ray(i, rays[id],
-                   pulse.has_solid()
-                       ? std::min(tfar, EmbreeScene::wire_search_end(pulse.solid().range_m))
-                       : tfar);
-    }
-    rays_meet_box(scene_->wire_bounds(), wire_rays, n, meets_wires.data());
-    for (unsigned i = 0; i < n; ++i) {
-      block_rays.restart(i, static_cast<float>(wire_rays.t_max[i]), meets_wires[i] != 0);
-    }
-    block_rays.intersect(scene_->wires(), context, n);
+    // segment whose closest approach lies before the solid is always reported.
+    trace_wires(context, n, [&](unsigned i) {
+      const PulseCandidates& pulse = candidates[block_rays.id(i)];
+      return pulse.has_solid() ? std::min(tfar, EmbreeScene::wire_search_end(pulse.solid().range_m))
+                               : tfar;
+    });
   }
 }
 

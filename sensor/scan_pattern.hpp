@@ -95,6 +95,7 @@ template <std::uint32_t Modulus>
 // milows_time_tag of each time, over arrays (the same values, vectorised; a time too large for
 // the common case, or not finite, goes through milows_time_tag, which wraps or throws).
 void milows_time_tags(std::span<const double> times_s, std::span<std::uint16_t> tags);
+
 [[nodiscard]] inline std::uint16_t hellas_time_tag(double t_s) {
   return time_tag<kHellasTimeTagModulus>(t_s, 1.0 / kHellasTimeTagTickS);
 }
