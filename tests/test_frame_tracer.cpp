@@ -34,9 +34,9 @@ namespace {
 constexpr TraceApi kApis[3] = {TraceApi::per_ray, TraceApi::stream, TraceApi::packet8};
 constexpr double kRangeTolerance_m = 1e-3;
 constexpr double kEnergyTolerance = 1e-9;
-// Under AddressSanitizer (scripts/sanitize.sh) the brute force runs 10–20× slower than in Release:
-// there the comparisons below take one in kOracleShare of their scenes and rays, every kind of aim
-// still, and their coverage floors scale with them. Every other build runs them whole.
+// Under AddressSanitizer (scripts/sanitize.sh) the brute force runs 10–20× slower than in
+// Release: there the comparisons below take one in kOracleShare of their scenes and rays, every
+// kind of aim still, and their coverage floors scale with them. Every other build runs them whole.
 #if defined(__SANITIZE_ADDRESS__)
 constexpr int kOracleShare = 4;
 #else
@@ -449,7 +449,8 @@ TEST(FrameTracerAgreement, MeshesStopTheRayLikeTheBruteForce) {
       }
     }
   }
-  EXPECT_GT(mesh_hits, 3000 / kOracleShare);  // most rays end on a building, the rest pass by or over it
+  // Most rays end on a building, the rest pass by or over it.
+  EXPECT_GT(mesh_hits, 3000 / kOracleShare);
 
   Scene objects;
   objects.terrain.kind = TerrainKind::none;
