@@ -182,8 +182,8 @@ void FlightOutputs::open_outputs(const Scene& scene, const RunCheckpoint* from) 
     }
   }
   const std::filesystem::path csv = directory / "points.csv";
-  if (const auto* resume = state(&RunCheckpoint::points_csv, "points.csv");
-      wants(OutputKind::csv) && !committed(csv)) {
+  if (wants(OutputKind::csv) && !committed(csv)) {
+    const auto* resume = state(&RunCheckpoint::points_csv, "points.csv");
     std::vector<std::string> ids = object_ids(scene);
     points_csv_ = std::make_unique<PointsCsvWriter>(
         resume ? PointsCsvWriter::resume(csv, std::move(ids), *resume)
@@ -200,8 +200,8 @@ void FlightOutputs::open_outputs(const Scene& scene, const RunCheckpoint* from) 
     }
   }
   const std::filesystem::path ply = directory / "points.ply";
-  if (const auto* resume = state(&RunCheckpoint::points_ply, "points.ply");
-      wants(OutputKind::ply) && !committed(ply)) {
+  if (wants(OutputKind::ply) && !committed(ply)) {
+    const auto* resume = state(&RunCheckpoint::points_ply, "points.ply");
     points_ply_ =
         std::make_unique<PlyWriter>(resume ? PlyWriter::resume(ply, *resume) : PlyWriter(ply));
   }
