@@ -2,8 +2,8 @@
 # `owsim view` end to end in a real browser (tests/web/report_page.mjs): the report of a run of
 # the corridor example, of a recording decoded without labels (as from real data: no summary, no
 # trajectory, no classes), of a words-only run (no points), of a LAS-only run, and of a run thinned
-# to a small budget; and the refusal of a folder that is no owsim output. Outputs and screenshots stay in
-# BUILD/web-report and BUILD/web-screens (CI artifacts).
+# to a small budget; and the refusal of a folder that is no owsim output. Screenshots stay in
+# BUILD/web-screens (CI artifacts); the runs in BUILD/web-report (~400 MB) only when a check failed.
 #   tests/web/report_pages.sh BUILD_DIR
 set -euo pipefail
 build=$(cd "$1" && pwd)
@@ -81,4 +81,5 @@ if [ "$(wc -l < "$out/not_owsim.err")" -ne 1 ] || ! grep -q "not an owsim output
   cat "$out/not_owsim.err" >&2
   exit 1
 fi
+rm -rf "$out"
 echo "report pages: all checks passed (screenshots in $shots)"

@@ -2,8 +2,8 @@
 # `owsim studio` end to end (tests/web/studio_flow.mjs): the real recorded flight copied into a
 # fresh folder, the studio started on it, the user's job done in headless Chromium; the bundled
 # real_corridor's DEM shaded and contoured on the map; then `owsim run` of the saved scenario must
-# write the same bytes as the studio's Fly did. Screenshots in
-# BUILD/web-studio-screens (CI artifacts).
+# write the same bytes as the studio's Fly did. Screenshots in BUILD/web-studio-screens (CI
+# artifacts); the flights in BUILD/web-studio (~650 MB) only when a check failed.
 #   tests/web/studio_flow.sh BUILD_DIR SHARED_DIR
 set -euo pipefail
 build=$(cd "$1" && pwd)
@@ -62,4 +62,5 @@ trap - EXIT
 for file in flight.d64 points.csv points.las truth.csv trajectory.csv; do
   cmp "$work/out/WingFlight1/$file" "$work/cli/$file"
 done
+rm -rf "$work"
 echo "studio_flow: owsim run of the saved scenario wrote the studio's bytes"
