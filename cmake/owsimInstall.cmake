@@ -9,6 +9,7 @@ install(TARGETS owsim owsim_geometry owsim_sensor owsim_engine owsim_io owsim_io
                 owsim_evaluation owsim_facade
         EXPORT owsimTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT dev
+        LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT dev  # OWSIM_MODULE_LIBRARY_TYPE=SHARED
         INCLUDES DESTINATION include/owsim)
 install(TARGETS owsim_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT owsim)
 foreach(module png gdal mesh mpi)   # the optional modules this build has

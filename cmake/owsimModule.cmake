@@ -1,7 +1,7 @@
 # owsim_add_module(NAME [FOLDER DIR] PUBLIC_DEPS ... PRIVATE_DEPS ...)
-# One static library owsim_NAME per top-level folder: DIR/*.cpp (DIR = NAME unless given), headers
-# beside them, included as "DIR/header.hpp" from the repository root. Installed headers go to
-# include/owsim/DIR/.
+# One library owsim_NAME per top-level folder, static (or shared: OWSIM_MODULE_LIBRARY_TYPE):
+# DIR/*.cpp (DIR = NAME unless given), headers beside them, included as "DIR/header.hpp" from the
+# repository root. Installed headers go to include/owsim/DIR/.
 function(owsim_set_warnings target)
   target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow -Wconversion
                          -Wno-sign-conversion)
@@ -22,7 +22,7 @@ function(owsim_add_module name)
   endif()
   file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/${folder}/*.cpp)
   file(GLOB headers CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/${folder}/*.hpp)
-  add_library(owsim_${name} STATIC ${sources} ${headers})
+  add_library(owsim_${name} ${OWSIM_MODULE_LIBRARY_TYPE} ${sources} ${headers})
   add_library(owsim::${name} ALIAS owsim_${name})
   set_target_properties(owsim_${name} PROPERTIES EXPORT_NAME ${name} LINKER_LANGUAGE CXX)
   target_include_directories(owsim_${name} PUBLIC
