@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <string_view>
+#include <utility>
 
 #include "evaluation/roc_figure.hpp"
 #include "geometry/error.hpp"
@@ -50,7 +51,10 @@ std::vector<RocRow> roc_rows(std::span<const FlightTracks> flights,
     const auto found = std::find_if(rows.begin(), rows.end(), same);
     const auto r = static_cast<std::size_t>(found - rows.begin());
     if (found == rows.end()) {
-      rows.push_back({values[m], numeric ? numbers[m] : std::nullopt});
+      RocRow row;
+      row.value = values[m];
+      row.number = numeric ? numbers[m] : std::nullopt;
+      rows.push_back(std::move(row));
       members_of.emplace_back();
     }
     members_of[r].push_back(m);

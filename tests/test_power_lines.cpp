@@ -116,7 +116,7 @@ TEST_F(PowerLines, BadLinesGiveOneLineAndNoOutput) {
       "coordinates": [[10.8447, 48.6845], [10.8447, 48.6912]]}}]})");
   write("latin1.geojson",
         "{\"type\": \"FeatureCollection\", \"features\": [{\"type\": "
-        "\"Feature\", \"properties\": {\"name\": \"Stra\xdfe\"}, \"geometry\": "
+        "\"Feature\", \"properties\": {\"name\": \"Stra\xdf" "e\"}, \"geometry\": "
         "{\"type\": \"LineString\", \"coordinates\": [[10.8447, 48.6845], "
         "[10.8447, 48.6912]]}}]}");
   // A name with a NUL character, which GDAL would cut short.
