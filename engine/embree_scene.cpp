@@ -18,9 +18,10 @@ namespace {
 // radius is widened by this much so the exact filter, not float rounding, decides.
 constexpr double kCaptureMarginRelative = 1e-3;
 constexpr double kCaptureMarginAbsolute_m = 1e-3;
-// Embree reports a flat segment's hit at the depth of its point nearest the ray, computed in
-// float from offsets of at most a few km (errors well under a millimetre); the wire pass reaches
-// this far beyond the solid hit so the exact range comparison in the filter decides.
+// Embree reports a flat segment's hit at the depth of its point nearest the ray, and a triangle's
+// or a cylinder's at its float depth, computed from offsets of at most a few km (errors well under
+// a millimetre); a search up to a hit reaches this far beyond it, so the exact range comparison
+// decides (the wire filter's against the solid, the tracer's of a solid against the level ground).
 constexpr double kDepthMarginRelative = 1e-5;
 constexpr double kDepthMarginAbsolute_m = 1e-3;
 // The wires' bounds reach this far beyond every capture radius (plus 1e-5 of the largest
@@ -164,8 +165,8 @@ double EmbreeScene::capture_radius_m(const Conductor& conductor) const {
   return radius * (1.0 + kCaptureMarginRelative) + kCaptureMarginAbsolute_m;
 }
 
-float EmbreeScene::wire_search_end(double solid_range_m) {
-  const double end = solid_range_m * (1.0 + kDepthMarginRelative) + kDepthMarginAbsolute_m;
+float EmbreeScene::search_end(double range_m) {
+  const double end = range_m * (1.0 + kDepthMarginRelative) + kDepthMarginAbsolute_m;
   const auto rounded = static_cast<float>(end);
   // The next float up: one step of the bits for a finite non-negative float (what nextafter
   // gives, without its call on every pulse).
@@ -254,6 +255,10 @@ void EmbreeScene::attach_terrain(const EmbreeDevice& device, std::size_t dem_gri
           attach_triangles(device, terrain_grids_->patches(), "adding the terrain");
       patch_frames_ = triangle_frames(terrain_grids_->patches());
     }
+    return;
+  }
+  if (terrain.kind == TerrainKind::flat) {
+    level_ground_ = triangle_frames(terrain.mesh(region_));
     return;
   }
   terrain_triangles_ = terrain.mesh(region_);

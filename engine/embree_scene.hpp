@@ -7,7 +7,12 @@
 //     terrain    — over the region the sensor can reach: one triangle mesh, or for a DEM of more
 //                  than kDemGridFromPosts posts grid primitives on its posts
 //                  (engine/terrain_grids.hpp);
-//     a triangle or grid hit is re-intersected in double (engine/frame_tracer.cpp);
+//     a triangle or grid hit is re-intersected in double (engine/frame_tracer.cpp).
+//   A flat terrain is not in the BVH: its two triangles over the region (most pulses end on
+//   them) are intersected in double for every ray before Embree's query, by the same test that
+//   re-intersected Embree's float hit on them (level_ground), and the solids pass then
+//   searches only up to that range. Two huge triangles in the BVH cost every ray a leaf test near
+//   the root and a traversal of what lies behind the ground.
 //   wires   — every conductor's segments in one FLAT_LINEAR_CURVE geometry (one Embree object
 //             and vertex buffer however many conductors: 35,000 geometries cost a 5,000-span
 //             grid 20 MB), its radius the *capture radius* r_wire + r_beam(max range) of the
@@ -61,7 +66,8 @@ class EmbreeScene {
   EmbreeScene(const EmbreeScene&) = delete;
   EmbreeScene& operator=(const EmbreeScene&) = delete;
 
-  [[nodiscard]] RTCScene solids() const { return solids_; }  // meshes, cylinders and terrain
+  // Meshes, cylinders and a terrain that is not flat.
+  [[nodiscard]] RTCScene solids() const { return solids_; }
   [[nodiscard]] RTCScene wires() const { return wires_; }    // conductors
   [[nodiscard]] const Scene& scene() const { return *objects_; }
   [[nodiscard]] const ReceiverParams& receiver() const { return receiver_; }
@@ -79,20 +85,26 @@ class EmbreeScene {
   // Bounds of every conductor's flat curve, widened by a float-safety margin: a pulse's ray
   // that misses them in double cannot meet a wire in Embree's float test (empty: no conductors).
   [[nodiscard]] const Eigen::AlignedBox3d& wire_bounds() const { return wire_bounds_; }
-  // The wire pass's tfar for a pulse whose solid hit lies at `solid_range_m`: a little beyond it,
-  // so float rounding of a reported segment depth cannot hide a segment in front of the solid.
-  [[nodiscard]] static float wire_search_end(double solid_range_m);
+  // Embree's tfar for a search up to a hit at `range_m` (the wire pass in front of the solid, the
+  // solids pass in front of the level ground): a little beyond it, so float rounding of a depth
+  // Embree reports cannot hide what lies in front of that hit.
+  [[nodiscard]] static float search_end(double range_m);
+  // A flat terrain's two triangles over the region, traced outside Embree: a ray's ground is the
+  // first of them intersect_triangle accepts (geometry/ray_triangle.hpp triangle_ranges), from 0
+  // on. Empty when the terrain is not flat.
+  [[nodiscard]] const std::vector<TriangleFrame>& level_ground() const { return level_ground_; }
+  [[nodiscard]] bool has_level_ground() const { return !level_ground_.empty(); }
 
   // Geometry ids: wires() holds geometry 0 (when there are conductors); in solids(), mesh m is
   // geomID m, then
   // come the cylinders and the terrain's one or two geometries (RTC_INVALID_GEOMETRY_ID when
-  // absent).
+  // absent, and for a flat terrain, which is not in the BVH).
   [[nodiscard]] unsigned cylinders_geom_id() const { return cylinders_geom_; }
   [[nodiscard]] unsigned terrain_geom_id() const { return terrain_geom_; }
   // A DEM's tiles with holes, as triangles (engine/terrain_grids.hpp).
   [[nodiscard]] unsigned terrain_patches_geom_id() const { return terrain_patches_geom_; }
   [[nodiscard]] bool has_terrain() const {
-    return terrain_geom_ != RTC_INVALID_GEOMETRY_ID ||
+    return has_level_ground() || terrain_geom_ != RTC_INVALID_GEOMETRY_ID ||
            terrain_patches_geom_ != RTC_INVALID_GEOMETRY_ID;
   }
   [[nodiscard]] bool is_terrain(unsigned geom_id) const {
@@ -112,9 +124,10 @@ class EmbreeScene {
   Eigen::AlignedBox2d region_;
   Eigen::AlignedBox3d wire_bounds_;
   TriangleMesh terrain_triangles_;  // a flat or grid terrain
-  // Each triangle's edges and normal, computed once (geometry/ray_triangle.hpp): of the flat or
-  // grid terrain, of a DEM's patches, and of each mesh by geomID.
+  // Each triangle's edges and normal, computed once (geometry/ray_triangle.hpp): of the grid
+  // terrain, of the flat terrain (level_ground_), of a DEM's patches, and of each mesh by geomID.
   std::vector<TriangleFrame> terrain_frames_;
+  std::vector<TriangleFrame> level_ground_;
   std::vector<TriangleFrame> patch_frames_;
   std::vector<std::vector<TriangleFrame>> mesh_frames_;
   std::optional<TerrainGrids> terrain_grids_;  // a DEM

@@ -5,7 +5,9 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <limits>
+#include <optional>
 
 #include "engine/flush_to_zero.hpp"
 #include "engine/trace_context.hpp"
@@ -40,13 +42,13 @@ double solid_background(const ReceiverNoise& noise, const Eigen::Vector3d& norma
   return noise.sunlit() ? noise.solid_background(normal, ray.dir_enu, reflectivity) : 0.0;
 }
 
-// The nearest solid hit Embree reported, turned into the pulse's solid candidate in double; its
-// angle and energy are left to the chunk's batch (the terms go there).
+// The pulse's solid candidate in double: the nearest solid Embree reported, or the level ground
+// where it lies nearer (or Embree reported none); its angle and energy are left to the chunk's
+// batch (the terms go there).
 void record_solid(const EmbreeScene& scene, const ReceiverNoise& noise, const PulseRay& ray,
-                  const RTCHit& solid, const CylinderRecord& cylinder, PulseCandidates& out,
+                  const RTCHit& solid, const CylinderRecord& cylinder,
+                  const std::optional<TriangleHit>& ground, PulseCandidates& out,
                   SurfaceEnergyBatch& batch) {
-  const unsigned geom_id = solid.geomID, prim_id = solid.primID;
-  if (geom_id == kNoHit) return;
   const Scene& objects = scene.scene();
   const ReceiverParams& receiver = scene.receiver();
   const auto set_solid = [&](double range_m, const SurfaceTerms& terms, std::uint32_t object,
@@ -55,27 +57,40 @@ void record_solid(const EmbreeScene& scene, const ReceiverNoise& noise, const Pu
                   solid_background(noise, normal, ray, terms.reflectivity));
     batch.add(terms);
   };
+  const auto set_ground = [&](const TriangleHit& hit) {
+    set_solid(
+        hit.t,
+        extended_surface_terms(ray, hit.t, hit.normal, objects.terrain.reflectivity, receiver),
+        ground_object_index(objects), SurfaceClass::ground, hit.normal);
+  };
+  const unsigned geom_id = solid.geomID, prim_id = solid.primID;
+  if (geom_id == kNoHit) {
+    if (ground) set_ground(*ground);
+    return;
+  }
   if (geom_id < objects.meshes.size()) {
     const MeshObject& mesh = objects.meshes[geom_id];
     const TriangleHit hit = scene.mesh_hit(geom_id, prim_id, ray);
+    if (ground && ground->t < hit.t) {
+      set_ground(*ground);
+      return;
+    }
     set_solid(hit.t, extended_surface_terms(ray, hit.t, hit.normal, mesh.reflectivity, receiver),
               mesh_object_index(objects, geom_id), mesh.surface, hit.normal);
     return;
   }
   if (geom_id == scene.cylinders_geom_id()) {
     if (cylinder.prim_id != prim_id) throw Error("engine: cylinder hit record out of step");
+    if (ground && ground->t < cylinder.hit.t) {
+      set_ground(*ground);
+      return;
+    }
     const Cylinder& hit_cylinder = objects.cylinders[prim_id];
     set_solid(cylinder.hit.t, cylinder_terms(ray, hit_cylinder, cylinder.hit, receiver),
               cylinder_object_index(objects, prim_id), hit_cylinder.surface, cylinder.hit.normal);
     return;
   }
-  if (scene.is_terrain(geom_id)) {
-    const TriangleHit hit = scene.terrain_hit(solid, ray);
-    set_solid(
-        hit.t,
-        extended_surface_terms(ray, hit.t, hit.normal, objects.terrain.reflectivity, receiver),
-        ground_object_index(objects), SurfaceClass::ground, hit.normal);
-  }
+  if (scene.is_terrain(geom_id)) set_ground(scene.terrain_hit(solid, ray));
 }
 
 // A block's rays in the form its Embree query takes them: RTCRayHit records (per ray, stream) or
@@ -218,6 +233,14 @@ void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const st
   }
   std::array<CylinderRecord, kChunk> cylinder_hits;
   BlockRays block_rays(api_);
+  // The block's rays in double, as arrays (the level ground's test and the wire pass's cull).
+  RayArrays arrays;
+  static_assert(kChunk <= RayArrays::kCapacity);
+  // The level ground (EmbreeScene::level_ground): ray i's range to it, NaN for none or beyond the
+  // counter's range, and which triangle holds it.
+  const std::vector<TriangleFrame>& level_ground = scene_->level_ground();
+  std::array<double, kChunk> ground_m;
+  std::array<std::uint8_t, kChunk> ground_triangle;
   SurfaceEnergyBatch batch;
   static_assert(kChunk <= SurfaceEnergyBatch::kCapacity);
   const double max_range = timeout_range_m(scene_->receiver().counter);
@@ -225,21 +248,12 @@ void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const st
   // The wire pass over the block's n rays, ray i searched up to search_end(i); a ray that misses
   // the wires' bounds up to there is left out (EmbreeScene::wire_bounds): Embree's own test of
   // its root costs a call.
-  RayArrays wire_rays;
   std::array<std::uint8_t, kChunk> meets_wires;
-  static_assert(kChunk <= RayArrays::kCapacity);
   const auto trace_wires = [&](TraceContext& context, unsigned n, const auto& search_end) {
+    for (unsigned i = 0; i < n; ++i) arrays.t_max[i] = static_cast<double>(search_end(i));
+    rays_meet_box(scene_->wire_bounds(), arrays, n, meets_wires.data());
     for (unsigned i = 0; i < n; ++i) {
-      const PulseRay& ray = rays[block_rays.id(i)];
-      for (int axis = 0; axis < 3; ++axis) {
-        wire_rays.origin[axis][i] = ray.origin_enu_m[axis];
-        wire_rays.dir[axis][i] = ray.dir_enu[axis];
-      }
-      wire_rays.t_max[i] = static_cast<double>(search_end(i));
-    }
-    rays_meet_box(scene_->wire_bounds(), wire_rays, n, meets_wires.data());
-    for (unsigned i = 0; i < n; ++i) {
-      block_rays.restart(i, static_cast<float>(wire_rays.t_max[i]), meets_wires[i] != 0);
+      block_rays.restart(i, static_cast<float>(arrays.t_max[i]), meets_wires[i] != 0);
     }
     block_rays.intersect(scene_->wires(), context, n);
   };
@@ -257,19 +271,35 @@ void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const st
     context.traversal_only = work_ == TraceWork::traversal_only;
 
     // Gather the active rays of the block; inactive ones keep empty candidate lists.
+    std::array<unsigned, kChunk> ids;
     unsigned n = 0;
     for (unsigned id = block; id < block_end; ++id) {
       candidates[id].clear();
       if (active[id] == 0) continue;
-      block_rays.set(n, rays[id], id, tfar);
+      ids[n] = id;
+      for (int axis = 0; axis < 3; ++axis) {
+        arrays.origin[axis][n] = rays[id].origin_enu_m[axis];
+        arrays.dir[axis][n] = rays[id].dir_enu[axis];
+      }
       cylinder_hits[id - block].prim_id = kNoHit;
       ++n;
+    }
+    // The level ground's range, where it lies within the counter's range: the solids are searched
+    // only up to it.
+    if (!level_ground.empty()) {
+      std::fill_n(arrays.t_max, n, max_range);
+      first_triangle_hits(level_ground, arrays, n, ground_m.data(), ground_triangle.data());
+    }
+    for (unsigned i = 0; i < n; ++i) {
+      const bool ground = !level_ground.empty() && !std::isnan(ground_m[i]);
+      block_rays.set(i, rays[ids[i]], ids[i],
+                     ground ? std::min(tfar, EmbreeScene::search_end(ground_m[i])) : tfar);
     }
     // A packet's unused lanes repeat its first ray (Embree skips them: they are not valid).
     if (api_ == TraceApi::packet8) {
       for (unsigned i = n; i % 8 != 0; ++i) {
-        const unsigned id = block_rays.id(i - i % 8);
-        block_rays.set(i, rays[id], id, tfar);
+        const unsigned first = i - i % 8;
+        block_rays.set(i, rays[block_rays.id(first)], block_rays.id(first), block_rays.tfar(first));
       }
     }
 
@@ -277,17 +307,23 @@ void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const st
     // and energies of the block's hits in one batch.
     block_rays.intersect(scene_->solids(), context, n);
     if (work_ == TraceWork::traversal_only) {
-      // The wire pass as far as Embree's own solid hit, with the same margin and cull.
+      // The wire pass as far as Embree's own solid hit (else the level ground's search end, where
+      // the solids pass stopped), with the same margin and cull.
       trace_wires(context, n, [&](unsigned i) {
         const bool solid = block_rays.hit(i).geomID != kNoHit;
-        return solid ? std::min(tfar, EmbreeScene::wire_search_end(block_rays.tfar(i))) : tfar;
+        return solid ? std::min(tfar, EmbreeScene::search_end(block_rays.tfar(i)))
+                     : block_rays.tfar(i);
       });
       continue;
     }
     batch.clear();
     for (unsigned i = 0; i < n; ++i) {
       const unsigned id = block_rays.id(i);
-      record_solid(*scene_, noise_, rays[id], block_rays.hit(i), cylinder_hits[id - block],
+      std::optional<TriangleHit> ground;
+      if (!level_ground.empty() && !std::isnan(ground_m[i])) {
+        ground = TriangleHit{ground_m[i], level_ground[ground_triangle[i]].normal};
+      }
+      record_solid(*scene_, noise_, rays[id], block_rays.hit(i), cylinder_hits[id - block], ground,
                    candidates[id], batch);
     }
     batch.evaluate();
@@ -298,11 +334,11 @@ void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const st
     }
 
     // Pass 2: the wires in front of it. The filter offers only segments nearer than the solid
-    // hit; tfar reaches a float-safety margin beyond it (EmbreeScene::wire_search_end), so a
+    // hit; tfar reaches a float-safety margin beyond it (EmbreeScene::search_end), so a
     // segment whose closest approach lies before the solid is always reported.
     trace_wires(context, n, [&](unsigned i) {
       const PulseCandidates& pulse = candidates[block_rays.id(i)];
-      return pulse.has_solid() ? std::min(tfar, EmbreeScene::wire_search_end(pulse.solid().range_m))
+      return pulse.has_solid() ? std::min(tfar, EmbreeScene::search_end(pulse.solid().range_m))
                                : tfar;
     });
   }

@@ -2,7 +2,8 @@
 // Traces a frame's pulses through the Embree scene (DESIGN.md "Batching"): the rays are split into
 // chunks handed to tbb::parallel_for, and each chunk goes through one of Embree's three query
 // forms, so benchmarks can compare them. Each chunk is traced twice: first against the solids
-// (the central ray's nearest pole, tree or ground hit), then against the wires up to that hit, so
+// (the central ray's nearest pole, tree or ground hit; a flat ground is intersected beforehand,
+// outside Embree, and the solids searched only up to it), then against the wires up to that hit, so
 // each conductor's candidate is its strongest segment in front of the solid (SENSOR-SPEC §7
 // pinned occlusion) however Embree orders its visits; a ray that misses the wires' bounds up to
 // its solid hit is not handed to the wire pass at all. Every pulse's result depends only on its own
@@ -27,8 +28,9 @@ enum class TraceApi {
 // What the tracer does with Embree's hits. `traversal_only` is a yardstick (`owsim bench`): the
 // same two queries against the same BVHs, the callbacks reduced to recording the hit — the
 // cylinders' exact test still decides their hits, the wire filter rejects every segment unread,
-// the wire pass reaches as far as Embree's solid hit, culled the same way — and no candidates. What
-// remains of a pulse's cost is Embree's traversal.
+// the wire pass reaches as far as Embree's solid hit (or the level ground), culled the same way —
+// and no candidates. What remains of a pulse's cost is Embree's traversal, and the level ground's
+// test that stands in for the flat terrain's part of it.
 enum class TraceWork { candidates, traversal_only };
 
 class FrameTracer {

@@ -7,9 +7,12 @@
 // Valid for finite inputs; degenerate triangles never hit.
 #include <Eigen/Core>
 #include <cstddef>
+#include <cstdint>
 #include <optional>
+#include <span>
 #include <vector>
 
+#include "geometry/ray_box.hpp"
 #include "geometry/triangle_mesh.hpp"
 
 namespace owsim {
@@ -39,6 +42,14 @@ struct TriangleFrame {
                                                             const Eigen::Vector3d& dir,
                                                             const TriangleFrame& triangle,
                                                             double t_min, double t_max);
+
+// For rays [0, n) of a block at once (the tracer's level ground, engine/embree_scene.hpp): the
+// first of `triangles` that intersect_triangle accepts for ray i with t ∈ [0, rays.t_max[i]] —
+// ranges[i] its t, the same bits (the same operations in the same order, over arrays), and
+// which[i] its index — else ranges[i] NaN (which[i] then unspecified). At most 256 triangles, n ≤
+// RayArrays::kCapacity (geometry/ray_triangle_batch.cpp).
+void first_triangle_hits(std::span<const TriangleFrame> triangles, const RayArrays& rays,
+                         std::size_t n, double* ranges, std::uint8_t* which);
 
 // The ray's range and normal on the plane of triangle (v0, v1, v2), the normal in the
 // (v1−v0)×(v2−v0) direction: where a float tracer put the ray on this triangle while the double

@@ -75,11 +75,27 @@ TEST(EmbreeScene, GeometryIdsFollowTheSceneOrder) {
   const test::RandomScene made = test::random_scene(3, {.spans = 2, .trees = 2});
   const EmbreeDevice device;
   const EmbreeScene scene(device, made.scene, ReceiverParams{}, made.region, timeout_m());
-  // Conductors live in the wires scene, all their segments in its one geometry; cylinders then
-  // terrain in the solids scene.
+  // Conductors live in the wires scene, all their segments in its one geometry; cylinders in the
+  // solids scene, then a terrain that is not flat. The flat one is outside Embree: the region's
+  // two triangles, as the terrain makes them.
   EXPECT_NE(scene.wires(), scene.solids());
   EXPECT_EQ(scene.cylinders_geom_id(), 0u);
-  EXPECT_EQ(scene.terrain_geom_id(), 1u);
+  ASSERT_EQ(made.scene.terrain.kind, TerrainKind::flat);
+  EXPECT_EQ(scene.terrain_geom_id(), RTC_INVALID_GEOMETRY_ID);
+  EXPECT_TRUE(scene.has_terrain());
+  const std::vector<TriangleFrame> flat = triangle_frames(made.scene.terrain.mesh(made.region));
+  ASSERT_EQ(scene.level_ground().size(), 2u);
+  for (std::size_t k = 0; k < flat.size(); ++k) {
+    EXPECT_EQ(scene.level_ground()[k].v0, flat[k].v0);
+    EXPECT_EQ(scene.level_ground()[k].edge1, flat[k].edge1);
+    EXPECT_EQ(scene.level_ground()[k].edge2, flat[k].edge2);
+  }
+  Scene sloped = made.scene;
+  test::Rng rng(3);
+  sloped.terrain = test::random_terrain(rng, true, 1800.0);
+  const EmbreeScene on_a_grid(device, sloped, ReceiverParams{}, made.region, timeout_m());
+  EXPECT_EQ(on_a_grid.terrain_geom_id(), 1u);
+  EXPECT_FALSE(on_a_grid.has_level_ground());
   ASSERT_NE(rtcGetGeometry(scene.wires(), 0), nullptr);
   ASSERT_GT(made.scene.conductors.size(), 1u);
   // Geometry segment k maps back to conductor c's own segment k − first_segment[c].
@@ -102,6 +118,7 @@ TEST(EmbreeScene, GeometryIdsFollowTheSceneOrder) {
   const EmbreeScene wires_only(device, bare, ReceiverParams{}, kRegion, timeout_m());
   EXPECT_EQ(wires_only.cylinders_geom_id(), RTC_INVALID_GEOMETRY_ID);
   EXPECT_EQ(wires_only.terrain_geom_id(), RTC_INVALID_GEOMETRY_ID);
+  EXPECT_FALSE(wires_only.has_terrain());
   EXPECT_TRUE(wires_only.terrain_mesh().triangles.empty());
 }
 

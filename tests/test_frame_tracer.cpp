@@ -392,6 +392,72 @@ TriangleMesh box_mesh(const Eigen::Vector3d& base, const Eigen::Vector3d& half) 
   return box;
 }
 
+// A flat terrain is traced outside Embree (EmbreeScene::level_ground) and the solids only up to
+// it: a pole and a building standing on it must still stop the rays that meet them a centimetre
+// above their foot, and the ground the rays that reach it a centimetre in front — as the brute
+// force over the terrain's triangles finds, in every query form; rays beyond the counter's range
+// or away from the ground meet nothing.
+TEST(FrameTracerAgreement, WhatStandsOnTheLevelGroundStopsTheRayToItsFoot) {
+  Scene objects;
+  objects.terrain.kind = TerrainKind::flat;
+  objects.terrain.flat_u_m = 37.25;
+  Cylinder pole;
+  pole.id = "pole";
+  pole.base_enu_m = Eigen::Vector3d(0.0, 300.0, 36.25);  // set a metre into the ground
+  pole.radius_m = 0.5;
+  pole.height_m = 13.0;
+  objects.cylinders = {pole};
+  MeshObject shed;
+  shed.id = "shed";
+  shed.mesh = box_mesh(Eigen::Vector3d(100.0, 300.0, 37.25), Eigen::Vector3d(5.0, 5.0, 2.0));
+  shed.reflectivity = 0.3;
+  objects.meshes = {shed};
+  ReceiverParams receiver;
+  receiver.range_noise_sigma_m = 0.0;
+  const double max_range = timeout_range_m(receiver.counter);
+  const EmbreeDevice device;
+  const EmbreeScene scene(
+      device, objects, receiver,
+      Eigen::AlignedBox2d(Eigen::Vector2d(-3000, -3000), Eigen::Vector2d(3000, 3000)), max_range);
+  ASSERT_TRUE(scene.has_level_ground());
+  EXPECT_EQ(scene.terrain_geom_id(), RTC_INVALID_GEOMETRY_ID);
+  const Eigen::Vector3d sensor(0.0, 0.0, 90.0);
+  // Aimed at: the pole's face and the shed's wall 1 cm above their foot, the ground 1 cm in
+  // front of them and 1 mm in front of the pole (whose buried part the ray meets within the
+  // solids pass's float margin beyond the ground), open ground, the ground beyond the counter's
+  // range, the sky.
+  const std::vector<Eigen::Vector3d> targets = {
+      {0.0, 299.5, 37.26},   {100.0, 295.0, 37.26}, {0.0, 299.49, 37.25},
+      {100.0, 294.99, 37.25}, {0.0, 299.499, 37.25}, {250.0, 120.0, 37.25},
+      {0.0, 1.001 * max_range, 37.25}};
+  std::vector<PulseRay> rays;
+  for (const Eigen::Vector3d& target : targets) rays.push_back({sensor, (target - sensor).normalized()});
+  rays.push_back({sensor, Eigen::Vector3d(0.0, 0.6, 0.8)});
+  const std::vector<std::uint8_t> active(rays.size(), 1);
+  std::vector<PulseCandidates> reference(rays.size());
+  BruteForceTracer(objects, scene.terrain_mesh(), receiver).trace(rays, active, reference);
+  const std::uint32_t ground = ground_object_index(objects);
+  const std::uint32_t pole_object = cylinder_object_index(objects, 0);
+  const std::uint32_t shed_object = mesh_object_index(objects, 0);
+  const std::vector<std::uint32_t> expected = {pole_object, shed_object, ground,
+                                                ground,      ground,      ground};
+  for (TraceApi api : kApis) {
+    std::vector<PulseCandidates> traced(rays.size());
+    FrameTracer(scene, api).trace(rays, active, traced);
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+      EXPECT_EQ(disagreement(traced[i], reference[i]), "") << to_string(api) << " ray " << i;
+      if (i < expected.size()) {
+        ASSERT_TRUE(traced[i].has_solid()) << to_string(api) << " ray " << i;
+        EXPECT_EQ(traced[i].solid().object_index, expected[i]) << to_string(api) << " ray " << i;
+        EXPECT_NEAR(traced[i].solid().range_m, (targets[i] - sensor).norm(), 1e-6)
+            << to_string(api) << " ray " << i;
+      } else {
+        EXPECT_FALSE(traced[i].has_solid()) << to_string(api) << " ray " << i;
+      }
+    }
+  }
+}
+
 // Buildings among wires, poles and trees over the terrain: random rays from the sensor towards
 // them give the same candidates in both tracers (the nearest solid a mesh, a pole, a tree or the
 // ground; wires only in front of it), and a ray square onto a wall is pinned.

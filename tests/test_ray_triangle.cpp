@@ -6,12 +6,16 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
+#include <bit>
+#include <cstdint>
 #include <cmath>
 #include <limits>
 #include <numbers>
 #include <optional>
 #include <random>
 
+#include "geometry/error.hpp"
 #include "geometry/ray_triangle.hpp"
 
 namespace owsim {
@@ -229,6 +233,88 @@ TEST(RayTriangle, PrecomputedFramesGiveTheVertexPathsBits) {
   }
   EXPECT_GT(hits, 4000);
   EXPECT_LT(hits, 16000);
+}
+
+// The engine's level ground takes every ray's range from first_triangle_hits over a block: each
+// lane must be intersect_triangle's bits (a hit's t, or none), the first triangle that accepts the
+// ray winning — over level and sloping triangles, rays aimed at their shared diagonal, rays in
+// their plane, and rays whose window ends before the triangle.
+TEST(RayTriangle, BlockOfRaysGivesTheOneRayTestsBitsFirstTriangleFirst) {
+  std::mt19937_64 random(4602);
+  std::normal_distribution<double> normal;
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  // A flat terrain's two triangles over a 6 km × 5 km region (as geometry/terrain.cpp makes them),
+  // then a sloping pair sharing the same diagonal.
+  const Eigen::Vector3d lo(-2500.0, -2000.0, 412.5), hi(3500.0, 3000.0, 412.5);
+  const Eigen::Vector3d c1(hi.x(), lo.y(), lo.z()), c3(lo.x(), hi.y(), lo.z());
+  const std::vector<std::vector<TriangleFrame>> sets = {
+      {triangle_frame(lo, c1, hi), triangle_frame(lo, hi, c3)},
+      {triangle_frame(lo, c1 + Eigen::Vector3d(0, 0, 90), hi + Eigen::Vector3d(0, 0, 40)),
+       triangle_frame(lo, hi + Eigen::Vector3d(0, 0, 40), c3 - Eigen::Vector3d(0, 0, 25))}};
+  int hits = 0, seconds = 0, diagonal = 0, lanes = 0;
+  for (const auto& triangles : sets) {
+    for (int block = 0; block < 200; ++block) {
+      RayArrays rays;
+      const std::size_t n = 1 + static_cast<std::size_t>(unit(random) * (RayArrays::kCapacity - 1));
+      for (std::size_t i = 0; i < n; ++i) {
+        const Eigen::Vector3d origin(3000.0 * normal(random), 3000.0 * normal(random),
+                                     lo.z() + 300.0 * normal(random));
+        // Aimed at the diagonal in one lane of four (within millimetres), else anywhere near.
+        const double along = unit(random);
+        Eigen::Vector3d target = lo + along * (hi - lo);
+        if (i % 4 != 0) {
+          target += Eigen::Vector3d(2500.0 * normal(random), 2500.0 * normal(random), 0.0);
+        } else {
+          target += Eigen::Vector3d(1e-3 * normal(random), 1e-3 * normal(random), 0.0);
+        }
+        Eigen::Vector3d dir = (target - origin).normalized();
+        if (i % 16 == 5) dir.z() = 0.0;  // level rays: in the plane or parallel to it
+        if (i % 16 == 9) dir = -dir;     // away from the ground
+        for (int axis = 0; axis < 3; ++axis) {
+          rays.origin[axis][i] = origin[axis];
+          rays.dir[axis][i] = dir[axis];
+        }
+        rays.t_max[i] = i % 8 == 3 ? 500.0 * unit(random) : 1e4;
+      }
+      std::array<double, RayArrays::kCapacity> ranges;
+      std::array<std::uint8_t, RayArrays::kCapacity> which;
+      first_triangle_hits(triangles, rays, n, ranges.data(), which.data());
+      for (std::size_t i = 0; i < n; ++i) {
+        ++lanes;
+        const Eigen::Vector3d origin(rays.origin[0][i], rays.origin[1][i], rays.origin[2][i]);
+        const Eigen::Vector3d dir(rays.dir[0][i], rays.dir[1][i], rays.dir[2][i]);
+        std::optional<TriangleHit> expected;
+        std::size_t expected_index = 0;
+        for (std::size_t k = 0; k < triangles.size() && !expected; ++k) {
+          expected = intersect_triangle(origin, dir, triangles[k], 0.0, rays.t_max[i]);
+          expected_index = k;
+        }
+        if (!expected) {
+          ASSERT_TRUE(std::isnan(ranges[i])) << "block " << block << " lane " << i;
+          continue;
+        }
+        ++hits;
+        seconds += expected_index == 1 ? 1 : 0;
+        diagonal += i % 4 == 0 ? 1 : 0;
+        ASSERT_EQ(std::bit_cast<std::uint64_t>(ranges[i]), std::bit_cast<std::uint64_t>(expected->t))
+            << "block " << block << " lane " << i;
+        ASSERT_EQ(which[i], expected_index) << "block " << block << " lane " << i;
+      }
+    }
+  }
+  EXPECT_GT(hits, lanes / 4);
+  EXPECT_GT(seconds, hits / 4);
+  EXPECT_GT(diagonal, hits / 8);
+}
+
+TEST(RayTriangle, BlockOfRaysRefusesMoreThanABlock) {
+  RayArrays rays;
+  std::array<double, 1> ranges;
+  std::array<std::uint8_t, 1> which;
+  const std::vector<TriangleFrame> one = {triangle_frame(kV0, kV1, kV2)};
+  EXPECT_THROW(
+      first_triangle_hits(one, rays, RayArrays::kCapacity + 1, ranges.data(), which.data()),
+      Error);
 }
 
 }  // namespace
