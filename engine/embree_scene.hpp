@@ -68,7 +68,7 @@ class EmbreeScene {
 
   // Meshes, cylinders and a terrain that is not flat.
   [[nodiscard]] RTCScene solids() const { return solids_; }
-  [[nodiscard]] RTCScene wires() const { return wires_; }    // conductors
+  [[nodiscard]] RTCScene wires() const { return wires_; }  // conductors
   [[nodiscard]] const Scene& scene() const { return *objects_; }
   [[nodiscard]] const ReceiverParams& receiver() const { return receiver_; }
   // The terrain's triangles over the region, built on each call (the brute-force tracer's and
@@ -90,8 +90,8 @@ class EmbreeScene {
   // Embree reports cannot hide what lies in front of that hit.
   [[nodiscard]] static float search_end(double range_m);
   // A flat terrain's two triangles over the region, traced outside Embree: a ray's ground is the
-  // first of them intersect_triangle accepts (geometry/ray_triangle.hpp triangle_ranges), from 0
-  // on. Empty when the terrain is not flat.
+  // first of them intersect_triangle accepts (geometry/ray_triangle.hpp first_triangle_hits), from
+  // 0 on. Empty when the terrain is not flat.
   [[nodiscard]] const std::vector<TriangleFrame>& level_ground() const { return level_ground_; }
   [[nodiscard]] bool has_level_ground() const { return !level_ground_.empty(); }
 

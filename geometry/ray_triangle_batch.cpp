@@ -22,8 +22,8 @@ constexpr double kEdgeTolerance = 1e-9;
 // (a0·b0 + a1·b1) + a2·b2; "avx2" enables no FMA, so nothing is fused.
 OWSIM_AVX2_CLONE void first_hits_of(const double (&v0)[3], const double (&e1)[3],
                                     const double (&e2)[3], std::uint8_t index,
-                                    const RayArrays& rays, std::size_t n,
-                                    double* __restrict ranges, std::uint8_t* __restrict which) {
+                                    const RayArrays& rays, std::size_t n, double* __restrict ranges,
+                                    std::uint8_t* __restrict which) {
   constexpr double kMaxFinite = std::numeric_limits<double>::max();
   for (std::size_t i = 0; i < n; ++i) {
     const double d0 = rays.dir[0][i], d1 = rays.dir[1][i], d2 = rays.dir[2][i];

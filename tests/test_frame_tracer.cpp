@@ -426,12 +426,16 @@ TEST(FrameTracerAgreement, WhatStandsOnTheLevelGroundStopsTheRayToItsFoot) {
   // front of them and 1 mm in front of the pole (whose buried part the ray meets within the
   // solids pass's float margin beyond the ground), open ground, the ground beyond the counter's
   // range, the sky.
-  const std::vector<Eigen::Vector3d> targets = {
-      {0.0, 299.5, 37.26},   {100.0, 295.0, 37.26}, {0.0, 299.49, 37.25},
-      {100.0, 294.99, 37.25}, {0.0, 299.499, 37.25}, {250.0, 120.0, 37.25},
-      {0.0, 1.001 * max_range, 37.25}};
+  const std::vector<Eigen::Vector3d> targets = {{0.0, 299.5, 37.26},
+                                                {100.0, 295.0, 37.26},
+                                                {0.0, 299.49, 37.25},
+                                                {100.0, 294.99, 37.25},
+                                                {0.0, 299.499, 37.25},
+                                                {250.0, 120.0, 37.25},
+                                                {0.0, 1.001 * max_range, 37.25}};
   std::vector<PulseRay> rays;
-  for (const Eigen::Vector3d& target : targets) rays.push_back({sensor, (target - sensor).normalized()});
+  for (const Eigen::Vector3d& target : targets)
+    rays.push_back({sensor, (target - sensor).normalized()});
   rays.push_back({sensor, Eigen::Vector3d(0.0, 0.6, 0.8)});
   const std::vector<std::uint8_t> active(rays.size(), 1);
   std::vector<PulseCandidates> reference(rays.size());
@@ -440,7 +444,7 @@ TEST(FrameTracerAgreement, WhatStandsOnTheLevelGroundStopsTheRayToItsFoot) {
   const std::uint32_t pole_object = cylinder_object_index(objects, 0);
   const std::uint32_t shed_object = mesh_object_index(objects, 0);
   const std::vector<std::uint32_t> expected = {pole_object, shed_object, ground,
-                                                ground,      ground,      ground};
+                                               ground,      ground,      ground};
   for (TraceApi api : kApis) {
     std::vector<PulseCandidates> traced(rays.size());
     FrameTracer(scene, api).trace(rays, active, traced);

@@ -8,8 +8,8 @@
 #include <algorithm>
 #include <array>
 #include <bit>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 #include <optional>
@@ -296,7 +296,8 @@ TEST(RayTriangle, BlockOfRaysGivesTheOneRayTestsBitsFirstTriangleFirst) {
         ++hits;
         seconds += expected_index == 1 ? 1 : 0;
         diagonal += i % 4 == 0 ? 1 : 0;
-        ASSERT_EQ(std::bit_cast<std::uint64_t>(ranges[i]), std::bit_cast<std::uint64_t>(expected->t))
+        ASSERT_EQ(std::bit_cast<std::uint64_t>(ranges[i]),
+                  std::bit_cast<std::uint64_t>(expected->t))
             << "block " << block << " lane " << i;
         ASSERT_EQ(which[i], expected_index) << "block " << block << " lane " << i;
       }
@@ -313,8 +314,7 @@ TEST(RayTriangle, BlockOfRaysRefusesMoreThanABlock) {
   std::array<std::uint8_t, 1> which;
   const std::vector<TriangleFrame> one = {triangle_frame(kV0, kV1, kV2)};
   EXPECT_THROW(
-      first_triangle_hits(one, rays, RayArrays::kCapacity + 1, ranges.data(), which.data()),
-      Error);
+      first_triangle_hits(one, rays, RayArrays::kCapacity + 1, ranges.data(), which.data()), Error);
 }
 
 }  // namespace
