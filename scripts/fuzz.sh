@@ -24,6 +24,11 @@ cmake --build "$build" -j "$(nproc)" --target "${targets[@]}"
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:intercept_tls_get_addr=0}"
 export LSAN_OPTIONS="${LSAN_OPTIONS:-suppressions=$root/fuzz/lsan_suppressions.txt}"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1}"
+# The targets write each input to a file under the temp folder (fuzz/fuzz_input_file.hpp) and
+# libFuzzer ends them with exit(), so the last file of each stays: a scratch folder of this run's.
+scratch=$(mktemp -d)
+trap 'rm -rf "$scratch"' EXIT
+export TMPDIR="$scratch"
 failed=()
 for target in "${targets[@]}"; do
   name=${target#fuzz_}
