@@ -236,8 +236,8 @@ void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const st
   // The block's rays in double, as arrays (the level ground's test and the wire pass's cull).
   RayArrays arrays;
   static_assert(kChunk <= RayArrays::kCapacity);
-  // The level ground (EmbreeScene::level_ground): ray i's range to it, NaN for none or beyond the
-  // counter's range, and which triangle holds it.
+  // The level ground (EmbreeScene::level_ground): ray i's range to it, NaN for none, beyond the
+  // counter's range or no flat terrain, and which triangle holds it.
   const std::vector<TriangleFrame>& level_ground = scene_->level_ground();
   std::array<double, kChunk> ground_m;
   std::array<std::uint8_t, kChunk> ground_triangle;
@@ -284,16 +284,14 @@ void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const st
       cylinder_hits[id - block].prim_id = kNoHit;
       ++n;
     }
-    // The level ground's range, where it lies within the counter's range: the solids are searched
-    // only up to it.
-    if (!level_ground.empty()) {
-      std::fill_n(arrays.t_max, n, max_range);
-      first_triangle_hits(level_ground, arrays, n, ground_m.data(), ground_triangle.data());
-    }
+    // The level ground's range, where it lies within the counter's range (NaN elsewhere, and
+    // everywhere when the terrain is not flat): the solids are searched only up to it.
+    std::fill_n(arrays.t_max, n, max_range);
+    first_triangle_hits(level_ground, arrays, n, ground_m.data(), ground_triangle.data());
     for (unsigned i = 0; i < n; ++i) {
-      const bool ground = !level_ground.empty() && !std::isnan(ground_m[i]);
-      block_rays.set(i, rays[ids[i]], ids[i],
-                     ground ? std::min(tfar, EmbreeScene::search_end(ground_m[i])) : tfar);
+      block_rays.set(
+          i, rays[ids[i]], ids[i],
+          std::isnan(ground_m[i]) ? tfar : std::min(tfar, EmbreeScene::search_end(ground_m[i])));
     }
     // A packet's unused lanes repeat its first ray (Embree skips them: they are not valid).
     if (api_ == TraceApi::packet8) {
@@ -320,7 +318,7 @@ void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const st
     for (unsigned i = 0; i < n; ++i) {
       const unsigned id = block_rays.id(i);
       std::optional<TriangleHit> ground;
-      if (!level_ground.empty() && !std::isnan(ground_m[i])) {
+      if (!std::isnan(ground_m[i])) {
         ground = TriangleHit{ground_m[i], level_ground[ground_triangle[i]].normal};
       }
       record_solid(*scene_, noise_, rays[id], block_rays.hit(i), cylinder_hits[id - block], ground,

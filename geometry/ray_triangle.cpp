@@ -5,15 +5,6 @@
 #include <limits>
 
 namespace owsim {
-namespace {
-
-// Barycentric slack at the edges. Rounding makes u and v uncertain by ~1e-13 for a ray from a
-// kilometre away at grazing incidence, so a ray through a shared edge or corner could miss both
-// triangles (Möller–Trumbore is not watertight); 1e-9 of an edge closes that gap and widens a
-// triangle by a micrometre at most.
-constexpr double kEdgeTolerance = 1e-9;
-
-}  // namespace
 
 TriangleFrame triangle_frame(const Eigen::Vector3d& v0, const Eigen::Vector3d& v1,
                              const Eigen::Vector3d& v2) {
@@ -44,10 +35,10 @@ std::optional<TriangleHit> intersect_triangle(const Eigen::Vector3d& origin,
   const double inv_det = 1.0 / det;
   const Eigen::Vector3d s = origin - triangle.v0;
   const double u = s.dot(p) * inv_det;
-  if (u < -kEdgeTolerance || u > 1.0 + kEdgeTolerance) return std::nullopt;
+  if (u < -kTriangleEdgeTolerance || u > 1.0 + kTriangleEdgeTolerance) return std::nullopt;
   const Eigen::Vector3d q = s.cross(edge1);
   const double v = dir.dot(q) * inv_det;
-  if (v < -kEdgeTolerance || u + v > 1.0 + kEdgeTolerance) return std::nullopt;
+  if (v < -kTriangleEdgeTolerance || u + v > 1.0 + kTriangleEdgeTolerance) return std::nullopt;
   const double t = edge2.dot(q) * inv_det;
   if (!(t >= t_min && t <= t_max)) return std::nullopt;
   return TriangleHit{t, triangle.normal};

@@ -17,6 +17,12 @@
 
 namespace owsim {
 
+// Barycentric slack at the edges. Rounding makes u and v uncertain by ~1e-13 for a ray from a
+// kilometre away at grazing incidence, so a ray through a shared edge or corner could miss both
+// triangles (Möller–Trumbore is not watertight); 1e-9 of an edge closes that gap and widens a
+// triangle by a micrometre at most.
+inline constexpr double kTriangleEdgeTolerance = 1e-9;
+
 struct TriangleHit {
   double t = 0.0;                                    // range along the ray (unit dir)
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // unit normal, (v1−v0)×(v2−v0) direction

@@ -13,9 +13,6 @@
 namespace owsim {
 namespace {
 
-// intersect_triangle's barycentric slack (geometry/ray_triangle.cpp).
-constexpr double kEdgeTolerance = 1e-9;
-
 // Rays still without a hit (range NaN) that meet the triangle get its t and `index`.
 // intersect_triangle's arithmetic, operation for operation: Eigen's cross product is
 // (a1·b2 − a2·b1, a2·b0 − a0·b2, a0·b1 − a1·b0) and its dot product of 3-vectors
@@ -43,9 +40,9 @@ OWSIM_AVX2_CLONE void first_hits_of(const double (&v0)[3], const double (&e1)[3]
     const double t = ((e2[0] * q0 + e2[1] * q1) + e2[2] * q2) * inv_det;
     // det ≠ 0 and finite; u, v inside with the slack; t ∈ [0, t_max] (a NaN fails every test).
     // Every test evaluated (& rather than &&), so the lanes need no branch.
-    const bool hit = (det != 0.0) & (std::abs(det) <= kMaxFinite) & (u >= -kEdgeTolerance) &
-                     (u <= 1.0 + kEdgeTolerance) & (v >= -kEdgeTolerance) &
-                     (u + v <= 1.0 + kEdgeTolerance) & (t >= 0.0) & (t <= rays.t_max[i]);
+    const bool hit = (det != 0.0) & (std::abs(det) <= kMaxFinite) & (u >= -kTriangleEdgeTolerance) &
+                     (u <= 1.0 + kTriangleEdgeTolerance) & (v >= -kTriangleEdgeTolerance) &
+                     (u + v <= 1.0 + kTriangleEdgeTolerance) & (t >= 0.0) & (t <= rays.t_max[i]);
     const bool take = hit & (ranges[i] != ranges[i]);  // not yet hit: NaN
     ranges[i] = take ? t : ranges[i];
     which[i] = take ? index : which[i];
