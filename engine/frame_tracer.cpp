@@ -240,7 +240,7 @@ void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const st
   // counter's range or no flat terrain, and which triangle holds it.
   const std::vector<TriangleFrame>& level_ground = scene_->level_ground();
   std::array<double, kChunk> ground_m;
-  std::array<std::uint8_t, kChunk> ground_triangle;
+  std::array<std::int64_t, kChunk> ground_triangle;
   SurfaceEnergyBatch batch;
   static_assert(kChunk <= SurfaceEnergyBatch::kCapacity);
   const double max_range = timeout_range_m(scene_->receiver().counter);

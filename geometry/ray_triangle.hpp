@@ -52,10 +52,10 @@ struct TriangleFrame {
 // For rays [0, n) of a block at once (the tracer's level ground, engine/embree_scene.hpp): the
 // first of `triangles` that intersect_triangle accepts for ray i with t ∈ [0, rays.t_max[i]] —
 // ranges[i] its t, the same bits (the same operations in the same order, over arrays), and
-// which[i] its index — else ranges[i] NaN (which[i] then unspecified). At most 256 triangles, n ≤
-// RayArrays::kCapacity (geometry/ray_triangle_batch.cpp).
+// which[i] its index — else ranges[i] NaN (which[i] then unspecified). n ≤ RayArrays::kCapacity
+// (geometry/ray_triangle_batch.cpp).
 void first_triangle_hits(std::span<const TriangleFrame> triangles, const RayArrays& rays,
-                         std::size_t n, double* ranges, std::uint8_t* which);
+                         std::size_t n, double* ranges, std::int64_t* which);
 
 // The ray's range and normal on the plane of triangle (v0, v1, v2), the normal in the
 // (v1−v0)×(v2−v0) direction: where a float tracer put the ray on this triangle while the double

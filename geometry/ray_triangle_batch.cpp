@@ -16,11 +16,13 @@ namespace {
 // Rays still without a hit (range NaN) that meet the triangle get its t and `index`.
 // intersect_triangle's arithmetic, operation for operation: Eigen's cross product is
 // (a1·b2 − a2·b1, a2·b0 − a0·b2, a0·b1 − a1·b0) and its dot product of 3-vectors
-// (a0·b0 + a1·b1) + a2·b2; "avx2" enables no FMA, so nothing is fused.
+// (a0·b0 + a1·b1) + a2·b2; "avx2" enables no FMA, so nothing is fused. The index is an int64 so
+// that every array of the loop has the lanes of a double: a byte array made GCC take 32 rays an
+// iteration and spill most of them to the stack.
 OWSIM_AVX2_CLONE void first_hits_of(const double (&v0)[3], const double (&e1)[3],
-                                    const double (&e2)[3], std::uint8_t index,
+                                    const double (&e2)[3], std::int64_t index,
                                     const RayArrays& rays, std::size_t n, double* __restrict ranges,
-                                    std::uint8_t* __restrict which) {
+                                    std::int64_t* __restrict which) {
   constexpr double kMaxFinite = std::numeric_limits<double>::max();
   for (std::size_t i = 0; i < n; ++i) {
     const double d0 = rays.dir[0][i], d1 = rays.dir[1][i], d2 = rays.dir[2][i];
@@ -52,16 +54,15 @@ OWSIM_AVX2_CLONE void first_hits_of(const double (&v0)[3], const double (&e1)[3]
 }  // namespace
 
 void first_triangle_hits(std::span<const TriangleFrame> triangles, const RayArrays& rays,
-                         std::size_t n, double* ranges, std::uint8_t* which) {
+                         std::size_t n, double* ranges, std::int64_t* which) {
   if (n > RayArrays::kCapacity) throw Error("ray triangle: more rays than a block holds");
-  if (triangles.size() > 256) throw Error("ray triangle: more than 256 triangles");
   std::fill(ranges, ranges + n, std::numeric_limits<double>::quiet_NaN());
   for (std::size_t k = 0; k < triangles.size(); ++k) {
     const TriangleFrame& triangle = triangles[k];
     const double v0[3] = {triangle.v0.x(), triangle.v0.y(), triangle.v0.z()};
     const double e1[3] = {triangle.edge1.x(), triangle.edge1.y(), triangle.edge1.z()};
     const double e2[3] = {triangle.edge2.x(), triangle.edge2.y(), triangle.edge2.z()};
-    first_hits_of(v0, e1, e2, static_cast<std::uint8_t>(k), rays, n, ranges, which);
+    first_hits_of(v0, e1, e2, static_cast<std::int64_t>(k), rays, n, ranges, which);
   }
 }
 

@@ -277,7 +277,7 @@ TEST(RayTriangle, BlockOfRaysGivesTheOneRayTestsBitsFirstTriangleFirst) {
         rays.t_max[i] = i % 8 == 3 ? 500.0 * unit(random) : 1e4;
       }
       std::array<double, RayArrays::kCapacity> ranges;
-      std::array<std::uint8_t, RayArrays::kCapacity> which;
+      std::array<std::int64_t, RayArrays::kCapacity> which;
       first_triangle_hits(triangles, rays, n, ranges.data(), which.data());
       for (std::size_t i = 0; i < n; ++i) {
         ++lanes;
@@ -311,7 +311,7 @@ TEST(RayTriangle, BlockOfRaysGivesTheOneRayTestsBitsFirstTriangleFirst) {
 TEST(RayTriangle, BlockOfRaysRefusesMoreThanABlock) {
   RayArrays rays;
   std::array<double, 1> ranges;
-  std::array<std::uint8_t, 1> which;
+  std::array<std::int64_t, 1> which;
   const std::vector<TriangleFrame> one = {triangle_frame(kV0, kV1, kV2)};
   EXPECT_THROW(
       first_triangle_hits(one, rays, RayArrays::kCapacity + 1, ranges.data(), which.data()), Error);
