@@ -127,6 +127,9 @@ void FrameSimulator::receive_range(FrameResult& out, std::span<const PulseCandid
                           std::span(first_normals.data(), run_size));
     }
     batch.clear();
+    // group_has_no_trigger, its group's draw taken once for the pulses of the group.
+    std::int64_t quiet_group = -1;
+    bool quiet = false;
     for (int k = run; k < run_end; ++k) {
       const auto at = static_cast<std::size_t>(k - run);
       const PulseCandidates& met = candidates[static_cast<std::size_t>(k - begin)];
@@ -136,8 +139,13 @@ void FrameSimulator::receive_range(FrameResult& out, std::span<const PulseCandid
         continue;
       }
       const double background = met.has_solid() ? met.solid_background() : noise_.sky_background();
-      if (noise_.on() && !noise_.group_has_no_trigger(background, params_.seed, out.frame, k)) {
-        continue;
+      if (noise_.on()) {
+        const std::int64_t group = k / ReceiverNoise::kTriggerGroup;
+        if (group != quiet_group) {
+          quiet_group = group;
+          quiet = noise_.group_is_quiet(params_.seed, out.frame, group);
+        }
+        if (!quiet || !(background <= noise_.max_background())) continue;
       }
       if (!met.has_solid()) {  // nothing met, no false trigger: no return
         batch_slot[at] = kNoReturn;

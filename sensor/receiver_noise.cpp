@@ -27,7 +27,7 @@ std::int64_t pulse_with(int pulse, std::uint32_t extra) {
 // index uniform, the others' excess over it memoryless). A group whose M exceeds every pulse's
 // Λ(gate) has no trigger at all, decided by one block for 128 pulses. Each thread keeps the last
 // group's draw: a frame's pulses come in order.
-constexpr int kTriggerGroup = 128;
+constexpr int kTriggerGroup = ReceiverNoise::kTriggerGroup;
 
 struct GroupMinimum {
   double minimum;
@@ -200,6 +200,12 @@ bool ReceiverNoise::echo_registers(double energy_rel, double range_m, double bac
   const double u =
       1.0 - uniform01({seed, frame, pulse_with(pulse, object), RandomPurpose::echo_detection});
   return u <= standard_normal_cdf(margin / s);
+}
+
+bool ReceiverNoise::group_is_quiet(std::uint64_t seed, std::int64_t frame,
+                                   std::int64_t group) const {
+  return first_exponentials_minimum(seed, frame, static_cast<int>(group * kTriggerGroup)).minimum >
+         max_gate_;
 }
 
 bool ReceiverNoise::group_has_no_trigger(double background, std::uint64_t seed, std::int64_t frame,

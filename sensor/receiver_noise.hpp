@@ -119,9 +119,15 @@ class ReceiverNoise {
                                             std::span<const BusyInterval> busy, std::uint64_t seed,
                                             std::int64_t frame, int pulse,
                                             std::uint32_t& draw) const;
-  // Whether the pulse's group (pulses 128j..128j+127) draws no false trigger for any pulse of
+  // The pulses that share the draw of their first exponentials' minimum: 128j..128j+127.
+  static constexpr int kTriggerGroup = 128;
+  // Whether group j (pulses kTriggerGroup·j ..) draws no false trigger for any pulse of
   // background at most max_background(): next_false_trigger_m from 0 then returns a negative
-  // number at its first test, with no draw of the pulse's own. One cached block per group.
+  // number at its first test, with no draw of the pulse's own.
+  [[nodiscard]] bool group_is_quiet(std::uint64_t seed, std::int64_t frame,
+                                    std::int64_t group) const;
+  // The same for the pulse's group and a background of its own: group_is_quiet and b at most
+  // max_background(). One cached block per group.
   [[nodiscard]] bool group_has_no_trigger(double background, std::uint64_t seed, std::int64_t frame,
                                           int pulse) const;
 

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <vector>
 
@@ -334,6 +335,37 @@ TEST(ReceiverNoise, TheSingleCandidatesShortcutIsTheGeneralPath) {
   EXPECT_GT(general, 1000);
   EXPECT_GT(registered, 1000);
   EXPECT_LT(registered, 11000);
+}
+
+// A quiet group (group_is_quiet, asked once for its 128 pulses by the engine's receiver pass) is
+// one where no pulse of a background up to max_background() draws a false trigger: every pulse's
+// next_false_trigger_m from 0 is negative, and group_has_no_trigger is the group's answer and the
+// pulse's background test — for backgrounds below, at and above the bound, and NaN.
+TEST(ReceiverNoise, AQuietGroupHasNoFalseTriggerUpToTheLargestBackground) {
+  const ReceiverNoise noise = model(0.005, 0.0006, SunPosition{true, 45.0, 135.0});
+  const double largest = noise.max_background();
+  ASSERT_GT(largest, 0.0);
+  int quiet = 0, loud = 0;
+  for (std::int64_t group = 0; group < 60; ++group) {
+    const bool is_quiet = noise.group_is_quiet(9, 2, group);
+    (is_quiet ? quiet : loud) += 1;
+    for (int k = 0; k < ReceiverNoise::kTriggerGroup; ++k) {
+      const int pulse = static_cast<int>(group) * ReceiverNoise::kTriggerGroup + k;
+      for (const double b : {0.0, 0.37 * largest, largest, std::nextafter(largest, 2.0 * largest),
+                             std::numeric_limits<double>::quiet_NaN()}) {
+        ASSERT_EQ(noise.group_has_no_trigger(b, 9, 2, pulse), is_quiet && b <= largest)
+            << "group " << group << " pulse " << pulse << " b " << b;
+      }
+      if (!is_quiet) continue;
+      for (const double b : {0.0, largest}) {
+        std::uint32_t draw = 0;
+        ASSERT_LT(noise.next_false_trigger_m(0.0, b, {}, 9, 2, pulse, draw), 0.0) << pulse;
+      }
+    }
+  }
+  // Both kinds of group were met.
+  EXPECT_GT(quiet, 5);
+  EXPECT_GT(loud, 5);
 }
 
 TEST(ReceiverDefaults, MeetTheSpecsTargets) {
