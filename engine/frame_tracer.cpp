@@ -248,7 +248,7 @@ void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const st
   // The wire pass over the block's n rays, ray i searched up to search_end(i); a ray that misses
   // the wires' bounds up to there is left out (EmbreeScene::wire_bounds): Embree's own test of
   // its root costs a call.
-  std::array<std::uint8_t, kChunk> meets_wires;
+  std::array<std::int64_t, kChunk> meets_wires;
   const auto trace_wires = [&](TraceContext& context, unsigned n, const auto& search_end) {
     for (unsigned i = 0; i < n; ++i) arrays.t_max[i] = static_cast<double>(search_end(i));
     rays_meet_box(scene_->wire_bounds(), arrays, n, meets_wires.data());

@@ -25,6 +25,6 @@ struct RayArrays {
 // else 0 (an empty box: never): separating axes, without a division or a branch. Finite rays,
 // n ≤ kCapacity.
 void rays_meet_box(const Eigen::AlignedBox3d& box, const RayArrays& rays, std::size_t n,
-                   std::uint8_t* meets);
+                   std::int64_t* meets);
 
 }  // namespace owsim

@@ -25,7 +25,7 @@ bool ray_meets_box(const Eigen::AlignedBox3d& box, const Eigen::Vector3d& origin
     }
     rays.t_max[i] = i == 4 ? t_max : 1.0;
   }
-  std::uint8_t meets[9];
+  std::int64_t meets[9];
   rays_meet_box(box, rays, 9, meets);
   for (std::size_t i = 0; i < 9; ++i) EXPECT_EQ(meets[i], i == 4 ? meets[4] : 0) << i;
   return meets[4] != 0;
@@ -69,7 +69,7 @@ TEST(RayBox, RandomRaysAgreeWithSlabs) {
   int meets = 0, misses = 0;
   RayArrays rays;
   double overlap[RayArrays::kCapacity];
-  std::uint8_t met[RayArrays::kCapacity];
+  std::int64_t met[RayArrays::kCapacity];
   for (int block = 0; block < 800; ++block) {
     // One box a block, 250 rays (not a multiple of a vector's lanes).
     const Eigen::Vector3d low(coordinate(rng), coordinate(rng), coordinate(rng));
