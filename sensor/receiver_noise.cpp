@@ -210,7 +210,7 @@ bool ReceiverNoise::group_is_quiet(std::uint64_t seed, std::int64_t frame,
 
 bool ReceiverNoise::group_has_no_trigger(double background, std::uint64_t seed, std::int64_t frame,
                                          int pulse) const {
-  return first_exponentials_minimum(seed, frame, pulse).minimum > max_gate_ && background <= max_b_;
+  return group_is_quiet(seed, frame, pulse / kTriggerGroup) && background <= max_b_;
 }
 
 double ReceiverNoise::next_false_trigger_m(double from_m, double background,
