@@ -112,6 +112,36 @@ TEST_F(AtomicOutput, WriteAtOverwritesAHeaderAndAppendingContinues) {
   EXPECT_EQ(content(final_path), "count=1234\ndata\nmore\n");
 }
 
+// Each kWritebackStep bytes, a file synced at commit hands what it holds to the kernel (and starts
+// its writeback): the temporary then holds every byte written, with no flush() asked for; a
+// header overwritten afterwards and the bytes appended still come out whole.
+TEST_F(AtomicOutput, EveryWritebackStepHandsTheBytesToTheKernel) {
+  const std::string piece(1000, 'x');
+  const std::uint64_t step = AtomicOutputFile::kWritebackStep;
+  for (const bool synced : {true, false}) {
+    const fs::path final_path = dir_ / (synced ? "synced.d64" : "unsynced.d64");
+    AtomicOutputFile file(final_path, AtomicOutputOptions{synced});
+    file.write("head");
+    while (file.bytes_written() + piece.size() < step) file.write(piece);
+    EXPECT_LT(fs::file_size(file.partial_path()), file.bytes_written());  // stdio holds some
+    file.write(piece);  // past the step
+    if (synced) {
+      EXPECT_EQ(fs::file_size(file.partial_path()), file.bytes_written());
+    } else {
+      EXPECT_LT(fs::file_size(file.partial_path()), file.bytes_written());
+    }
+    file.write_at(0, "HEAD", 4);
+    file.write("tail");
+    const std::uint64_t total = file.bytes_written();
+    file.commit();
+    const std::string bytes = content(final_path);
+    ASSERT_EQ(bytes.size(), total);
+    EXPECT_EQ(bytes.substr(0, 5), "HEADx");
+    EXPECT_EQ(bytes.substr(bytes.size() - 5), "xtail");
+    EXPECT_EQ(bytes.find_first_not_of('x', 4), bytes.size() - 4);
+  }
+}
+
 TEST_F(AtomicOutput, MovedFileIsCommittedByItsNewOwner) {
   const fs::path final_path = dir_ / "moved.csv";
   AtomicOutputFile first(final_path);

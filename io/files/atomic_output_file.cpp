@@ -71,6 +71,7 @@ AtomicOutputFile AtomicOutputFile::resume(std::filesystem::path final_path, std:
     file.fail("cannot resume from " + file.partial_path_.string(), errno);
   }
   file.bytes_written_ = bytes;
+  file.written_back_ = bytes;
   file.committed_ = false;
   return file;
 }
@@ -106,6 +107,7 @@ AtomicOutputFile::AtomicOutputFile(AtomicOutputFile&& other) noexcept
       options_(other.options_),
       file_(std::exchange(other.file_, nullptr)),
       bytes_written_(other.bytes_written_),
+      written_back_(other.written_back_),
       committed_(std::exchange(other.committed_, true)),  // the moved-from object owns nothing
       resumed_(other.resumed_) {}
 
@@ -140,6 +142,18 @@ void AtomicOutputFile::write(const void* data, std::size_t size) {
     fail("cannot write " + partial_path_.string(), errno);
   }
   bytes_written_ += size;
+  if (options_.sync_on_commit && bytes_written_ - written_back_ >= kWritebackStep) {
+    start_writeback();
+  }
+}
+
+void AtomicOutputFile::start_writeback() {
+  written_back_ = bytes_written_;
+  errno = 0;
+  if (std::fflush(file_) != 0) fail("cannot write " + partial_path_.string(), errno);
+  // Asynchronous: the kernel starts writing the dirty pages and returns; a file system without
+  // it (EINVAL, ESPIPE) simply leaves them all to commit()'s fsync, as before.
+  ::sync_file_range(::fileno(file_), 0, 0, SYNC_FILE_RANGE_WRITE);
 }
 
 void AtomicOutputFile::write(std::string_view text) { write(text.data(), text.size()); }

@@ -31,6 +31,11 @@ struct AtomicOutputOptions {
 
 class AtomicOutputFile {
  public:
+  // A file synced at commit hands its bytes to the kernel and has it start writing them to the
+  // disk, without waiting, each time this many more have been written: commit()'s fsync then
+  // waits for the last step's bytes only, and the disk works while the program computes.
+  static constexpr std::uint64_t kWritebackStep = std::uint64_t{8} << 20;
+
   // Creates `<final_path>.partial` new (whatever was at that name is removed first, never
   // followed). The directory must exist.
   explicit AtomicOutputFile(std::filesystem::path final_path, AtomicOutputOptions options = {});
@@ -82,6 +87,8 @@ class AtomicOutputFile {
   // The temporary of `final_path` opened read-write after resume()'s checks.
   [[nodiscard]] static int open_resumable(const std::filesystem::path& final_path,
                                           std::uint64_t bytes);
+  // Hands what has been written to the kernel and starts its writeback (kWritebackStep).
+  void start_writeback();
   [[noreturn]] void fail(std::string_view what, int error_number) const;
   void require_open(std::string_view operation) const;
 
@@ -90,6 +97,7 @@ class AtomicOutputFile {
   AtomicOutputOptions options_;
   std::FILE* file_ = nullptr;
   std::uint64_t bytes_written_ = 0;
+  std::uint64_t written_back_ = 0;  // bytes_written() when writeback was last started
   bool committed_ = false;
   bool resumed_ = false;  // the temporary outlives a failure (resume())
 };
