@@ -226,11 +226,14 @@ RunReport run_distributed(Communicator& comm, const Simulation& simulation,
     block.clear();
     if (mine > 0) {
       simulation.in_arena([&] {
-        encode_frames(setup.simulator, setup, FlightRange{mine_first, mine}, threads, encoder,
-                      [&](const FrameView& frame, const FrameEncoding& encoding) {
-                        block.add(encoding, scan, encoder);
-                        if (quicklook) quicklook->add_frame(frame);
-                      });
+        encode_frames(
+            setup.simulator, setup, FlightRange{mine_first, mine}, threads, encoder,
+            [&](const FrameView& frame, const FrameEncoding& encoding) {
+              block.add(encoding, scan, encoder);
+              if (quicklook) quicklook->add_frame(frame);
+            },
+            encoder.reads_frame_records() || quicklook ? FrameRecordScope::frame
+                                                       : FrameRecordScope::block);
       });
     }
     // Each process's bytes after everything before them: the earlier rounds' and, in this

@@ -21,8 +21,8 @@ void run_flight(const FrameSimulator& simulator, const PoseSource& poses, const 
 }
 
 void run_flight(const FrameSimulator& simulator, const PoseSource& poses, const FlightRange& range,
-                int frames_in_flight, const FrameBlockDone& block_done,
-                const FramePrepare& prepare, const FrameSink& sink) {
+                int frames_in_flight, const FrameBlockDone& block_done, const FramePrepare& prepare,
+                const FrameSink& sink, FrameRecordScope records) {
   if (frames_in_flight < 1) throw Error("engine: frames in flight must be at least 1");
   if (range.frame_count <= 0) return;
 
@@ -53,13 +53,13 @@ void run_flight(const FrameSimulator& simulator, const PoseSource& poses, const 
                                              buffer->frame = next++;
                                              return buffer;
                                            }) &
-          tbb::make_filter<FrameResult*, FrameResult*>(tbb::filter_mode::parallel,
-                                                       [&](FrameResult* buffer) {
-                                                         simulator.simulate(buffer->frame, poses,
-                                                                            *buffer, block_done);
-                                                         if (prepare) prepare(*buffer);
-                                                         return buffer;
-                                                       }) &
+          tbb::make_filter<FrameResult*, FrameResult*>(
+              tbb::filter_mode::parallel,
+              [&](FrameResult* buffer) {
+                simulator.simulate(buffer->frame, poses, *buffer, block_done, records);
+                if (prepare) prepare(*buffer);
+                return buffer;
+              }) &
           tbb::make_filter<FrameResult*, void>(tbb::filter_mode::serial_in_order,
                                                [&](FrameResult* buffer) {
                                                  sink(*buffer);

@@ -32,9 +32,11 @@ void run_flight(const FrameSimulator& simulator, const PoseSource& poses, const 
 void run_flight(const FrameSimulator& simulator, const PoseSource& poses, const FlightRange& range,
                 int frames_in_flight, const FramePrepare& prepare, const FrameSink& sink);
 // The same with `block_done` (may be empty) run on each block of a frame as its simulation
-// completes it (FrameSimulator::simulate), before `prepare` runs on the whole frame.
+// completes it (FrameSimulator::simulate), before `prepare` runs on the whole frame; with
+// FrameRecordScope::block the frames given to `prepare` and `sink` hold no per-pulse records
+// (block_done alone sees them).
 void run_flight(const FrameSimulator& simulator, const PoseSource& poses, const FlightRange& range,
-                int frames_in_flight, const FrameBlockDone& block_done,
-                const FramePrepare& prepare, const FrameSink& sink);
+                int frames_in_flight, const FrameBlockDone& block_done, const FramePrepare& prepare,
+                const FrameSink& sink, FrameRecordScope records = FrameRecordScope::frame);
 
 }  // namespace owsim

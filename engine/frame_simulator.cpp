@@ -36,9 +36,28 @@ FrameSimulator::FrameSimulator(const FrameSimulatorParams& params, const EmbreeS
   validate(params_.receiver);
 }
 
-void FrameSimulator::prepare(std::int64_t frame, const PoseSource& poses, FrameResult& out) const {
+FrameSimulator::BlockRecords FrameSimulator::BlockScratch::records(std::size_t count) {
+  pulses.resize(count);
+  rays.resize(count);
+  active.resize(count);
+  returns.resize(count);
+  object_returns.resize(count);
+  return BlockRecords{pulses, rays, active, returns, object_returns};
+}
+
+FrameSimulator::BlockRecords FrameSimulator::frame_records(FrameResult& out, std::size_t begin,
+                                                           std::size_t count) {
+  return BlockRecords{
+      std::span(out.pulses).subspan(begin, count), std::span(out.rays).subspan(begin, count),
+      std::span(out.active).subspan(begin, count), std::span(out.returns).subspan(begin, count),
+      std::span(out.object_returns).subspan(begin, count)};
+}
+
+void FrameSimulator::prepare(std::int64_t frame, const PoseSource& poses, FrameResult& out,
+                             FrameRecordScope records) const {
   const ScanParams& scan = params_.scan;
-  const auto count = static_cast<std::size_t>(scan.pulses_per_frame());
+  const auto count =
+      records == FrameRecordScope::frame ? static_cast<std::size_t>(scan.pulses_per_frame()) : 0;
   out.frame = frame;
   out.pulses.resize(count);
   out.rays.resize(count);
@@ -57,13 +76,18 @@ void FrameSimulator::build_rays(std::int64_t frame, const PoseSource& poses,
   tbb::parallel_for(tbb::blocked_range<int>(0, params_.scan.lines_per_frame, kLinesPerTask),
                     [&](const auto& lines) {
                       const FlushDenormalsToZero ftz;
+                      const BlockRecords block = frame_records(
+                          out,
+                          static_cast<std::size_t>(lines.begin() * params_.scan.fibers_per_line),
+                          static_cast<std::size_t>(lines.size() * params_.scan.fibers_per_line));
                       ray_builder_.build_lines(out.sweep, poses, lines.begin(), lines.end(),
-                                               out.pulses, out.rays, out.active);
+                                               block.pulses, block.rays, block.active);
                     });
 }
 
-void FrameSimulator::receive_range(FrameResult& out, std::span<const PulseCandidates> candidates,
-                                   int begin, int end) const {
+void FrameSimulator::receive_range(std::int64_t frame, const BlockRecords& block,
+                                   std::span<const PulseCandidates> candidates, int begin) const {
+  const int end = begin + static_cast<int>(block.returns.size());
   const ScanParams& scan = params_.scan;
   const ReceiverParams& receiver = params_.receiver;
   std::array<Candidate, PulseCandidates::kMaxWires + 1> gathered;
@@ -72,10 +96,9 @@ void FrameSimulator::receive_range(FrameResult& out, std::span<const PulseCandid
   // Pulse k's returns, by the cheapest path that gives them.
   const auto receive_pulse = [&](int k, std::size_t index, PulseReturns& returns,
                                  const PhiloxBlock* first_range_noise) {
-    if (out.active[index] == 0) {
+    if (block.active[index] == 0) {
       returns = PulseReturns{};
-      returns.counter1 =
-          reference_counter(scan.reference_counts, receiver, params_.seed, out.frame, k);
+      returns.counter1 = reference_counter(scan.reference_counts, receiver, params_.seed, frame, k);
       returns.counter2 = receiver.counter.timeout_counts;
       return;
     }
@@ -90,21 +113,21 @@ void FrameSimulator::receive_range(FrameResult& out, std::span<const PulseCandid
     noise.first_range_noise = first_range_noise;
     if (!weather_.empty()) {
       const std::span<Candidate> weathered_met =
-          weathered_candidates(weather_, out.rays[index], met, receiver, weathered, &busy);
+          weathered_candidates(weather_, block.rays[index], met, receiver, weathered, &busy);
       noise.busy = busy.span();
-      select_returns(weathered_met, receiver, params_.seed, out.frame, k, returns, noise);
+      select_returns(weathered_met, receiver, params_.seed, frame, k, returns, noise);
       return;
     }
     // Most pulses meet one surface or none and no wire: no gathering for them.
     if (met.wires().empty()) {
       if (met.has_solid()) {
-        select_single_return(met.solid(), receiver, params_.seed, out.frame, k, returns, noise);
+        select_single_return(met.solid(), receiver, params_.seed, frame, k, returns, noise);
       } else {
-        select_returns({}, receiver, params_.seed, out.frame, k, returns, noise);
+        select_returns({}, receiver, params_.seed, frame, k, returns, noise);
       }
       return;
     }
-    select_returns(met.gather(gathered), receiver, params_.seed, out.frame, k, returns, noise);
+    select_returns(met.gather(gathered), receiver, params_.seed, frame, k, returns, noise);
   };
   // A run of pulses at once: the first return's range-noise draws on vector lanes (the same bits
   // as one at a time: geometry/keyed_random.hpp random_blocks), then the common pulse — one
@@ -121,7 +144,7 @@ void FrameSimulator::receive_range(FrameResult& out, std::span<const PulseCandid
     const int run_end = std::min(end, run + static_cast<int>(kNoiseDrawsAhead));
     const auto run_size = static_cast<std::size_t>(run_end - run);
     if (range_noise) {
-      random_blocks(params_.seed, out.frame, run, RandomPurpose::range_noise_first,
+      random_blocks(params_.seed, frame, run, RandomPurpose::range_noise_first,
                     std::span(first_range_noise.data(), run_size));
       first_block_normals(std::span(first_range_noise.data(), run_size),
                           std::span(first_normals.data(), run_size));
@@ -134,7 +157,7 @@ void FrameSimulator::receive_range(FrameResult& out, std::span<const PulseCandid
       const auto at = static_cast<std::size_t>(k - run);
       const PulseCandidates& met = candidates[static_cast<std::size_t>(k - begin)];
       batch_slot[at] = kGeneralPath;
-      if (out.active[static_cast<std::size_t>(k)] == 0 || !weather_.empty() ||
+      if (block.active[static_cast<std::size_t>(k - begin)] == 0 || !weather_.empty() ||
           !met.wires().empty()) {
         continue;
       }
@@ -143,7 +166,7 @@ void FrameSimulator::receive_range(FrameResult& out, std::span<const PulseCandid
         const std::int64_t group = k / ReceiverNoise::kTriggerGroup;
         if (group != quiet_group) {
           quiet_group = group;
-          quiet = noise_.group_is_quiet(params_.seed, out.frame, group);
+          quiet = noise_.group_is_quiet(params_.seed, frame, group);
         }
         if (!quiet || !(background <= noise_.max_background())) continue;
       }
@@ -156,21 +179,20 @@ void FrameSimulator::receive_range(FrameResult& out, std::span<const PulseCandid
     }
     batch.evaluate();
     for (int k = run; k < run_end; ++k) {
-      const auto index = static_cast<std::size_t>(k);
+      const auto index = static_cast<std::size_t>(k - begin);
       const auto at = static_cast<std::size_t>(k - run);
-      PulseReturns& returns = out.returns[index];
+      PulseReturns& returns = block.returns[index];
       const int slot = batch_slot[at];
       if (slot == kNoReturn) {
         set_no_returns(receiver, returns);
       } else if (slot >= 0 && batch.outcome(static_cast<std::size_t>(slot)) !=
                                   SingleReturnBatch::Outcome::undecided) {
-        batch.write(static_cast<std::size_t>(slot),
-                    candidates[static_cast<std::size_t>(k - begin)].solid(), returns);
+        batch.write(static_cast<std::size_t>(slot), candidates[index].solid(), returns);
       } else {
         receive_pulse(k, index, returns, range_noise ? &first_range_noise[at] : nullptr);
       }
       // While the returns are in registers: no pass over the 88-byte records later.
-      out.object_returns[index] = object_return_bits(returns, named_objects_);
+      block.object_returns[index] = object_return_bits(returns, named_objects_);
     }
   }
 }
@@ -179,17 +201,18 @@ void FrameSimulator::receive(FrameResult& out, std::span<const PulseCandidates> 
   if (candidates.size() != out.returns.size()) {
     throw Error("engine: the candidates do not match the frame's pulses");
   }
-  tbb::parallel_for(
-      tbb::blocked_range<int>(0, params_.scan.pulses_per_frame(), 1024), [&](const auto& range) {
-        const FlushDenormalsToZero ftz;
-        const auto first = static_cast<std::size_t>(range.begin());
-        receive_range(out, candidates.subspan(first, range.size()), range.begin(), range.end());
-      });
+  tbb::parallel_for(tbb::blocked_range<int>(0, params_.scan.pulses_per_frame(), 1024),
+                    [&](const auto& range) {
+                      const FlushDenormalsToZero ftz;
+                      const auto first = static_cast<std::size_t>(range.begin());
+                      receive_range(out.frame, frame_records(out, first, range.size()),
+                                    candidates.subspan(first, range.size()), range.begin());
+                    });
 }
 
 void FrameSimulator::simulate(std::int64_t frame, const PoseSource& poses, FrameResult& out,
-                              const FrameBlockDone& block_done) const {
-  prepare(frame, poses, out);
+                              const FrameBlockDone& block_done, FrameRecordScope records) const {
+  prepare(frame, poses, out, records);
   const int fibers = params_.scan.fibers_per_line;
   // Each task takes its lines through all three steps while their data is in cache; the result
   // is the same as build_rays, trace and receive one after the other (each pulse depends only on
@@ -200,18 +223,26 @@ void FrameSimulator::simulate(std::int64_t frame, const PoseSource& poses, Frame
         const FlushDenormalsToZero ftz;
         std::vector<PulseCandidates>& candidates = block_candidates_.local();
         candidates.resize(static_cast<std::size_t>(kLinesPerTask * fibers));
+        BlockScratch& scratch = block_scratch_.local();
         for (int first = lines.begin(); first < lines.end(); first += kLinesPerTask) {
           const int last = std::min(lines.end(), first + kLinesPerTask);
           const auto begin = static_cast<std::size_t>(first * fibers);
           const auto count = static_cast<std::size_t>((last - first) * fibers);
-          ray_builder_.build_lines(out.sweep, poses, first, last, out.pulses, out.rays, out.active);
-          const std::span<PulseCandidates> block(candidates.data(), count);
+          const BlockRecords block = records == FrameRecordScope::frame
+                                         ? frame_records(out, begin, count)
+                                         : scratch.records(count);
+          ray_builder_.build_lines(out.sweep, poses, first, last, block.pulses, block.rays,
+                                   block.active);
+          const std::span<PulseCandidates> met(candidates.data(), count);
           // Ray ids are block-relative: the block's rays, flags and candidates start at 0.
-          tracer_.trace_range(std::span<const PulseRay>(out.rays).subspan(begin, count),
-                              std::span<const std::uint8_t>(out.active).subspan(begin, count),
-                              block, 0, static_cast<unsigned>(count));
-          receive_range(out, block, static_cast<int>(begin), static_cast<int>(begin + count));
-          if (block_done) block_done(out, static_cast<int>(begin), static_cast<int>(begin + count));
+          tracer_.trace_range(block.rays, block.active, met, 0, static_cast<unsigned>(count));
+          receive_range(frame, block, met, static_cast<int>(begin));
+          if (block_done) {
+            block_done(out,
+                       FrameView{frame, out.sweep, block.pulses, block.rays, block.returns,
+                                 block.object_returns},
+                       static_cast<int>(begin));
+          }
         }
       },
       tbb::simple_partitioner{});

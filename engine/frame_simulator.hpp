@@ -50,10 +50,21 @@ struct FrameSimulatorParams {
   std::uint64_t seed = 0;
 };
 
-// Called by the worker that simulated pulses [begin, end) of `frame` right after their receiver
-// pass, while that block's pulses and returns are still in its cache: concurrently for disjoint
-// blocks of a frame, in any order. Blocks start and end on line boundaries.
-using FrameBlockDone = std::function<void(const FrameResult& frame, int begin, int end)>;
+// Where simulate() keeps a frame's per-pulse records (pulses, rays, active flags, returns, object
+// bits). `frame`: in the FrameResult, whole, for whoever reads the frame afterwards. `block`: only
+// in the worker's scratch for the block being simulated, handed to FrameBlockDone and then
+// overwritten; the FrameResult's record vectors are left empty. A reader that needs only each
+// block once (the words, the tally) takes `block`: the frame's 4 MB of records (corridor) then
+// never leave the cores' caches.
+enum class FrameRecordScope { frame, block };
+
+// Called by the worker that simulated pulses [begin, begin + block.pulses.size()) of `frame` right
+// after their receiver pass, while that block's records are still in its cache: concurrently for
+// disjoint blocks of a frame, in any order. Blocks start and end on line boundaries. `block` holds
+// those pulses' records only (its first entry is pulse `begin`); `frame` holds the frame's index
+// and sweep, and its records only with FrameRecordScope::frame.
+using FrameBlockDone =
+    std::function<void(const FrameResult& frame, const FrameView& block, int begin)>;
 
 class FrameSimulator {
  public:
@@ -65,7 +76,8 @@ class FrameSimulator {
   // (may be empty) is called for each block when its returns are complete; an exception it
   // throws stops the frame and reaches the caller.
   void simulate(std::int64_t frame, const PoseSource& poses, FrameResult& out,
-                const FrameBlockDone& block_done = {}) const;
+                const FrameBlockDone& block_done = {},
+                FrameRecordScope records = FrameRecordScope::frame) const;
   // The pattern and rays alone (no trace): what `trace-only` benchmarks and the brute-force
   // reference start from.
   void build_rays(std::int64_t frame, const PoseSource& poses, FrameResult& out) const;
@@ -77,11 +89,33 @@ class FrameSimulator {
   [[nodiscard]] const FrameTracer& tracer() const { return tracer_; }
 
  private:
-  // Sizes out's buffers for the frame and sets its index and sweep.
-  void prepare(std::int64_t frame, const PoseSource& poses, FrameResult& out) const;
-  // Returns of pulses [begin, end) of out; candidates[k − begin] belongs to pulse k.
-  void receive_range(FrameResult& out, std::span<const PulseCandidates> candidates, int begin,
-                     int end) const;
+  // One block's records: pulses [begin, begin + size) of a frame, entry 0 pulse `begin`.
+  struct BlockRecords {
+    std::span<Pulse> pulses;
+    std::span<PulseRay> rays;
+    std::span<std::uint8_t> active;
+    std::span<PulseReturns> returns;
+    std::span<std::uint8_t> object_returns;
+  };
+  // A worker's scratch for one block's records (FrameRecordScope::block).
+  struct BlockScratch {
+    std::vector<Pulse> pulses;
+    std::vector<PulseRay> rays;
+    std::vector<std::uint8_t> active;
+    std::vector<PulseReturns> returns;
+    std::vector<std::uint8_t> object_returns;
+    [[nodiscard]] BlockRecords records(std::size_t count);
+  };
+  [[nodiscard]] static BlockRecords frame_records(FrameResult& out, std::size_t begin,
+                                                  std::size_t count);
+
+  // Sizes out's buffers for the frame (empties them for `block`) and sets its index and sweep.
+  void prepare(std::int64_t frame, const PoseSource& poses, FrameResult& out,
+               FrameRecordScope records = FrameRecordScope::frame) const;
+  // Returns of pulses [begin, begin + block size) of `frame`, into the block's records (entry 0
+  // pulse `begin`); candidates[k − begin] belongs to pulse k.
+  void receive_range(std::int64_t frame, const BlockRecords& block,
+                     std::span<const PulseCandidates> candidates, int begin) const;
 
   FrameSimulatorParams params_;
   FrameRayBuilder ray_builder_;
@@ -93,6 +127,8 @@ class FrameSimulator {
   mutable tbb::enumerable_thread_specific<std::vector<PulseCandidates>> block_candidates_;
   // Each worker's batch of single-return pulses (receive_range).
   mutable tbb::enumerable_thread_specific<SingleReturnBatch> single_returns_;
+  // Each worker's records for its block (FrameRecordScope::block).
+  mutable tbb::enumerable_thread_specific<BlockScratch> block_scratch_;
 };
 
 }  // namespace owsim

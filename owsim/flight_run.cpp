@@ -9,6 +9,7 @@
 #include "geometry/error.hpp"
 #include "io/run/run_checkpoint.hpp"
 #include "owsim/version.hpp"
+#include "sensor/scan_pattern.hpp"
 
 namespace owsim {
 namespace {
@@ -124,7 +125,11 @@ FlightOutputOptions run_output_options(const FlightSetup& setup, const nlohmann:
 
 void encode_frames(const FrameSimulator& simulator, const FlightSetup& setup,
                    const FlightRange& range, int threads, const FrameEncoder& encoder,
-                   const std::function<void(const FrameView&, const FrameEncoding&)>& sink) {
+                   const std::function<void(const FrameView&, const FrameEncoding&)>& sink,
+                   FrameRecordScope records) {
+  if (records == FrameRecordScope::block && encoder.reads_frame_records()) {
+    throw Error("engine: the encoder reads whole frames; their records cannot be left in blocks");
+  }
   // Each frame is itself simulated in parallel, so one frame per thread keeps every core busy;
   // more frames in flight only add their buffers (4.1 MB each on the corridor: pulses, rays and
   // returns) to what competes with the scene for the cache. `owsim bench` on the corridor with 2
@@ -143,29 +148,33 @@ void encode_frames(const FrameSimulator& simulator, const FlightSetup& setup,
   for (FrameEncoding& encoding : encodings) encoder.size_encoding(encoding);
   run_flight(
       simulator, setup.trajectory, range, frames_in_flight,
-      [&](const FrameResult& frame, int begin, int end) {
-        encoder.encode_pulses(frame.view(), begin, end,
-                              encodings[static_cast<std::size_t>(frame.buffer)]);
+      [&](const FrameResult& frame, const FrameView& block, int begin) {
+        encoder.encode_pulses(block, begin, encodings[static_cast<std::size_t>(frame.buffer)]);
       },
       [&](const FrameResult& frame) {
-        encoder.finish_encoding(frame.view(), setup.trajectory.pose_at(frame.pulses.front().time_s),
-                                encodings[static_cast<std::size_t>(frame.buffer)]);
+        encoder.finish_encoding(
+            frame.view(),
+            setup.trajectory.pose_at(pulse_time_s(setup.scenario.scan, frame.frame, 0)),
+            encodings[static_cast<std::size_t>(frame.buffer)]);
       },
       [&](const FrameResult& frame) {
         sink(frame.view(), encodings[static_cast<std::size_t>(frame.buffer)]);
-      });
+      },
+      records);
 }
 
 void simulate_frames(const FrameSimulator& simulator, const FlightSetup& setup,
                      const FlightRange& range, int threads, FlightOutputs& outputs,
                      const std::function<void(std::int64_t)>& frame_done) {
   std::int64_t done = 0;
-  encode_frames(simulator, setup, range, threads, outputs.encoder(),
-                [&](const FrameView& frame, const FrameEncoding& encoding) {
-                  outputs.add_frame(frame, encoding);
-                  ++done;
-                  if (frame_done) frame_done(done);
-                });
+  encode_frames(
+      simulator, setup, range, threads, outputs.encoder(),
+      [&](const FrameView& frame, const FrameEncoding& encoding) {
+        outputs.add_frame(frame, encoding);
+        ++done;
+        if (frame_done) frame_done(done);
+      },
+      outputs.reads_frame_records() ? FrameRecordScope::frame : FrameRecordScope::block);
 }
 
 RunReport run_flight_outputs(const FlightSetup& setup, const SimulationOptions& simulation,

@@ -80,10 +80,13 @@ struct RunReport {
 
 // Frames `range` simulated by `simulator` (in parallel on the calling thread's TBB arena, one
 // frame in flight per thread), encoded by `encoder` where they were simulated, and handed to
-// `sink` in frame order, one at a time. An encoding error is thrown, in frame order.
+// `sink` in frame order, one at a time. An encoding error is thrown, in frame order. With
+// FrameRecordScope::block (only when the encoder does not read_frame_records) the frames given to
+// `sink` hold their index and sweep but no per-pulse records.
 void encode_frames(const FrameSimulator& simulator, const FlightSetup& setup,
                    const FlightRange& range, int threads, const FrameEncoder& encoder,
-                   const std::function<void(const FrameView&, const FrameEncoding&)>& sink);
+                   const std::function<void(const FrameView&, const FrameEncoding&)>& sink,
+                   FrameRecordScope records = FrameRecordScope::frame);
 
 // Frames `range` simulated by `simulator` (in parallel on the calling thread's TBB arena, one
 // frame in flight per thread) and fed to `outputs` in frame order. `frame_done` (may be empty) is

@@ -5,10 +5,10 @@
 #include <numbers>
 
 #include "geometry/error.hpp"
+#include "geometry/vector_clones.hpp"
 #include "sensor/fiber_layout.hpp"
 #include "sensor/motor_encoder.hpp"
 #include "sensor/scan_params_check.hpp"
-#include "geometry/vector_clones.hpp"
 
 namespace owsim {
 namespace {
@@ -146,8 +146,8 @@ void FrameRayBuilder::build_lines(const FrameSweep& sweep, const PoseSource& pos
   const int fibers = scan_.fibers_per_line;
   const int frame_pulses = scan_.pulses_per_frame();
   if (line_begin < 0 || line_end > scan_.lines_per_frame || line_begin > line_end ||
-      pulses.size() != static_cast<std::size_t>(frame_pulses) || rays.size() != pulses.size() ||
-      active.size() != pulses.size()) {
+      pulses.size() != static_cast<std::size_t>((line_end - line_begin) * fibers) ||
+      rays.size() != pulses.size() || active.size() != pulses.size()) {
     throw Error("frame rays: lines or buffers do not fit the frame");
   }
   const std::size_t direction = sweep.direction > 0 ? 0 : 1;
@@ -231,7 +231,7 @@ void FrameRayBuilder::build_lines(const FrameSweep& sweep, const PoseSource& pos
         const int index = chunk + i;
         const Slot& slot = slots_[static_cast<std::size_t>(index)];
         const int k = first + index;
-        const auto at = static_cast<std::size_t>(k);
+        const auto at = static_cast<std::size_t>(k - line_begin * fibers);
         Pulse& pulse = pulses[at];
         pulse.index = k;
         pulse.line = line;

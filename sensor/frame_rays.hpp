@@ -43,8 +43,9 @@ class FrameRayBuilder {
   // Throws owsim::Error for scan parameters that fail validate().
   FrameRayBuilder(const ScanParams& scan, const Mount& mount);
 
-  // Pulses and rays of lines [line_begin, line_end) of the frame into the frame-sized spans
-  // (index = line · F + slot); active[k] = 0 for the reference fiber, whose ray is left default.
+  // Pulses and rays of lines [line_begin, line_end) of the frame into spans holding exactly those
+  // lines' pulses (entry (line − line_begin) · F + slot); active = 0 for the reference fiber, whose
+  // ray is left default.
   void build_lines(const FrameSweep& sweep, const PoseSource& poses, int line_begin, int line_end,
                    std::span<Pulse> pulses, std::span<PulseRay> rays,
                    std::span<std::uint8_t> active) const;

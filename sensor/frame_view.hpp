@@ -1,6 +1,7 @@
 #pragma once
 // A read-only view of one simulated frame — what the output sinks (io/) consume, without
 // depending on the engine that produced it.
+#include <cstddef>
 #include <cstdint>
 #include <span>
 
@@ -20,5 +21,20 @@ struct FrameView {
   // when the frame's producer did not (a reader then derives them from `returns`).
   std::span<const std::uint8_t> object_returns = {};
 };
+
+// Pulses [begin, end) of a whole frame's view as a view of their own — a block's records, as
+// FrameBlockDone (engine/frame_simulator.hpp) and FrameEncoder::encode_pulses take them: entry 0
+// is pulse `begin`. Requires begin ≤ end ≤ frame.pulses.size().
+[[nodiscard]] inline FrameView frame_block(const FrameView& frame, std::size_t begin,
+                                           std::size_t end) {
+  const std::size_t count = end - begin;
+  return FrameView{frame.frame,
+                   frame.sweep,
+                   frame.pulses.subspan(begin, count),
+                   frame.rays.subspan(begin, count),
+                   frame.returns.subspan(begin, count),
+                   frame.object_returns.empty() ? frame.object_returns
+                                                : frame.object_returns.subspan(begin, count)};
+}
 
 }  // namespace owsim

@@ -89,7 +89,9 @@ class FrameEncodingTest : public ::testing::Test {
       blocks.emplace_back(line * fibers, end * fibers);
     }
     for (auto block = blocks.rbegin(); block != blocks.rend(); ++block) {
-      outputs.encode_pulses(frame.view(), block->first, block->second, out);
+      outputs.encode_pulses(frame_block(frame.view(), static_cast<std::size_t>(block->first),
+                                        static_cast<std::size_t>(block->second)),
+                            block->first, out);
     }
     outputs.finish_encoding(frame.view(), frame.start, out);
   }
@@ -261,21 +263,33 @@ TEST_F(FrameEncodingTest, AnEncodingErrorSurfacesWhenItsFrameIsAdded) {
 
 TEST_F(FrameEncodingTest, PulsesThatAreNotWholeLinesOrAnUnsizedEncodingAreRefused) {
   FlightOutputs outputs(options("blocks"), scene_, scan_, local_frame_);
+  const FrameView frame = frames_[0].view();
+  const auto fibers = static_cast<std::size_t>(scan_.fibers_per_line);
+  const auto pulses = static_cast<std::size_t>(scan_.pulses_per_frame());
   FrameEncoding unsized;
-  EXPECT_THROW(outputs.encode_pulses(frames_[0].view(), 0, scan_.fibers_per_line, unsized), Error);
+  EXPECT_THROW(outputs.encode_pulses(frame_block(frame, 0, fibers), 0, unsized), Error);
   FrameEncoding encoding;
   outputs.size_encoding(encoding);
-  const int fibers = scan_.fibers_per_line;
-  for (const auto& [begin, end] :
-       std::vector<std::pair<int, int>>{{1, fibers},
-                                        {0, fibers + 1},
-                                        {fibers, fibers},
-                                        {-fibers, 0},
-                                        {0, scan_.pulses_per_frame() + fibers}}) {
-    EXPECT_THROW(outputs.encode_pulses(frames_[0].view(), begin, end, encoding), Error)
-        << begin << ".." << end;
+  // (first pulse of the block's records, their end, the pulse they are said to start at)
+  struct Case {
+    std::size_t begin, end;
+    int at;
+  };
+  for (const Case& c : std::vector<Case>{
+           {1, fibers, 1},                                      // not from a line's start
+           {0, fibers + 1, 0},                                  // not to a line's end
+           {fibers, fibers, static_cast<int>(fibers)},          // no pulse
+           {0, fibers, -static_cast<int>(fibers)},              // before the frame
+           {0, 2 * fibers, static_cast<int>(pulses - fibers)},  // past its end
+       }) {
+    EXPECT_THROW(outputs.encode_pulses(frame_block(frame, c.begin, c.end), c.at, encoding), Error)
+        << c.begin << ".." << c.end << " at " << c.at;
   }
-  EXPECT_NO_THROW(outputs.encode_pulses(frames_[0].view(), fibers, 3 * fibers, encoding));
+  FrameView mismatched = frame_block(frame, fibers, 3 * fibers);
+  mismatched.returns = mismatched.returns.first(fibers);
+  EXPECT_THROW(outputs.encode_pulses(mismatched, static_cast<int>(fibers), encoding), Error);
+  EXPECT_NO_THROW(outputs.encode_pulses(frame_block(frame, fibers, 3 * fibers),
+                                        static_cast<int>(fibers), encoding));
 }
 
 TEST_F(FrameEncodingTest, AnEncodingOfAnotherFrameIsRefused) {

@@ -35,9 +35,11 @@ Frame build_frame(const FrameRayBuilder& builder, const ScanParams& scan, const 
   Frame frame{std::vector<Pulse>(count), std::vector<PulseRay>(count),
               std::vector<std::uint8_t>(count, 7)};
   // In two uneven blocks, as the simulator's parallel_for may split the lines.
-  builder.build_lines(sweep, poses, 0, 5, frame.pulses, frame.rays, frame.active);
-  builder.build_lines(sweep, poses, 5, scan.lines_per_frame, frame.pulses, frame.rays,
-                      frame.active);
+  const auto split = static_cast<std::size_t>(5 * scan.fibers_per_line);
+  builder.build_lines(sweep, poses, 0, 5, std::span(frame.pulses).first(split),
+                      std::span(frame.rays).first(split), std::span(frame.active).first(split));
+  builder.build_lines(sweep, poses, 5, scan.lines_per_frame, std::span(frame.pulses).subspan(split),
+                      std::span(frame.rays).subspan(split), std::span(frame.active).subspan(split));
   return frame;
 }
 

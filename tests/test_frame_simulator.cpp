@@ -2,10 +2,13 @@
 // the reference counter and no ray, every ray is a unit vector from the sensor, ground returns
 // lie on the ground to the millimetre, and a frame's bytes do not depend on the thread count, the
 // Embree query form, the buffers reused or the order frames are simulated in (DESIGN.md
-// "Determinism"); each pulse's object_returns bits mark exactly its returns on named objects.
+// "Determinism"); each pulse's object_returns bits mark exactly its returns on named objects;
+// records kept per block (FrameRecordScope::block) are the frame's, block by block.
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
+#include <atomic>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -235,6 +238,62 @@ TEST(FrameSimulator, ObjectReturnBitsMarkTheReturnsOnNamedObjects) {
   }
   EXPECT_GT(on_objects, 50);  // wires and trees were hit, and the ground: both bits are tested
   EXPECT_GT(on_ground, 1000);
+}
+
+// FrameRecordScope::block: each block's records reach the callback in the worker's scratch and
+// the FrameResult keeps none; put back together they are the frame's records, byte for byte.
+TEST(FrameSimulator, RecordsKeptPerBlockAreTheFramesBlockByBlock) {
+  const test::RandomScene made =
+      test::random_scene(79, {.spans = 4, .trees = 20, .sloped_grid = true, .max_range_m = 500.0});
+  FrameSimulatorParams params;
+  params.seed = 4321;
+  const EmbreeDevice device;
+  const EmbreeScene embree(device, made.scene, params.receiver, made.region,
+                           timeout_range_m(params.receiver.counter));
+  const test::LevelFlight flight = toward_first_span(made);
+  const FrameSimulator simulator(params, embree, TraceApi::packet8);
+  FrameResult whole;
+  simulator.simulate(5, flight, whole);
+
+  FrameResult assembled;  // the blocks' records copied to their places
+  assembled.pulses.resize(whole.pulses.size());
+  assembled.rays.resize(whole.rays.size());
+  assembled.returns.resize(whole.returns.size());
+  assembled.object_returns.resize(whole.object_returns.size());
+  std::vector<std::atomic<int>> seen(whole.pulses.size());
+  FrameResult blocks;
+  tbb::task_arena arena(2);
+  arena.execute([&] {
+    simulator.simulate(
+        5, flight, blocks,
+        [&](const FrameResult& frame, const FrameView& block, int begin) {
+          EXPECT_EQ(frame.frame, 5);
+          EXPECT_TRUE(frame.pulses.empty() && frame.returns.empty());
+          const auto at = static_cast<std::ptrdiff_t>(begin);
+          std::copy(block.pulses.begin(), block.pulses.end(), assembled.pulses.begin() + at);
+          std::copy(block.rays.begin(), block.rays.end(), assembled.rays.begin() + at);
+          std::copy(block.returns.begin(), block.returns.end(), assembled.returns.begin() + at);
+          std::copy(block.object_returns.begin(), block.object_returns.end(),
+                    assembled.object_returns.begin() + at);
+          for (std::size_t k = 0; k < block.pulses.size(); ++k) {
+            EXPECT_EQ(block.pulses[k].index, begin + static_cast<int>(k));
+            seen[static_cast<std::size_t>(begin) + k] += 1;
+          }
+        },
+        FrameRecordScope::block);
+  });
+  EXPECT_TRUE(blocks.pulses.empty() && blocks.rays.empty() && blocks.active.empty() &&
+              blocks.returns.empty() && blocks.object_returns.empty());
+  EXPECT_EQ(blocks.sweep.direction, whole.sweep.direction);
+  EXPECT_TRUE(std::all_of(seen.begin(), seen.end(), [](const auto& n) { return n == 1; }));
+  EXPECT_TRUE(fingerprint(assembled) == fingerprint(whole));
+  EXPECT_TRUE(assembled.object_returns == whole.object_returns);
+  for (std::size_t k = 0; k < whole.pulses.size(); ++k) {
+    ASSERT_EQ(assembled.pulses[k].time_s, whole.pulses[k].time_s) << k;
+    ASSERT_EQ(assembled.pulses[k].encoder, whole.pulses[k].encoder) << k;
+    ASSERT_EQ(assembled.rays[k].dir_enu, whole.rays[k].dir_enu) << k;
+    ASSERT_EQ(assembled.rays[k].origin_enu_m, whole.rays[k].origin_enu_m) << k;
+  }
 }
 
 }  // namespace

@@ -9,6 +9,10 @@
 // OWSIM_RELEASE_0_1_0_CLI=/path/to/owsim-0.1.0 runs the same test on that build instead, as
 // the check of the test itself: the scenario then lacks the receiver key (0.1.0 refuses it) and
 // fog_bank must give 0.1.0's uncorrected files.
+//
+// Without point outputs a run keeps each block's records only while the block is encoded
+// (FrameRecordScope::block, engine/frame_simulator.hpp): the same run without `points` must give
+// the same words, trajectory, truth and counts, byte for byte.
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
@@ -57,6 +61,11 @@ json read_json(const fs::path& path) {
   return json::parse(file);
 }
 
+std::string file_bytes(const fs::path& path) {
+  std::ifstream file(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
+}
+
 class NoiseOffBytes : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(NoiseOffBytes, EqualOwsim010) {
@@ -71,6 +80,28 @@ TEST_P(NoiseOffBytes, EqualOwsim010) {
        (folder / "run").string(), "--quiet", "--outputs", "d64,points,trajectory,summary,truth"},
       folder.path());
   ASSERT_EQ(result.exit_status, 0) << result.command << "\n" << result.err;
+  if (release.empty()) {
+    const test::CliResult blocks = test::run_program(
+        OWSIM_CLI_PATH,
+        {"run", scenario.string(), "--frames", std::to_string(golden["frames"].get<int>()), "--out",
+         (folder / "blocks").string(), "--quiet", "--outputs", "d64,trajectory,summary,truth"},
+        folder.path());
+    ASSERT_EQ(blocks.exit_status, 0) << blocks.command << "\n" << blocks.err;
+    int compared = 0;
+    for (const fs::directory_entry& entry : fs::recursive_directory_iterator(folder / "blocks")) {
+      if (!entry.is_regular_file()) continue;
+      const fs::path name = fs::relative(entry.path(), folder / "blocks");
+      if (name == "summary.json") continue;
+      EXPECT_TRUE(file_bytes(entry.path()) == file_bytes(folder / "run" / name)) << name;
+      ++compared;
+    }
+    EXPECT_GE(compared, 4);  // the words, trajectory.csv, truth.csv, scenario.yaml
+    const json with_points = read_json(folder / "run/summary.json");
+    const json without = read_json(folder / "blocks/summary.json");
+    for (const char* key : {"returns", "second_returns", "objects", "false_returns_per_pulse"}) {
+      EXPECT_EQ(without.at(key), with_points.at(key)) << key;
+    }
+  }
   const json digest = json::parse(test::run_python_file(kSource / "tests/oracles/run_digest.py",
                                                         {.arguments = (folder / "run").string()}));
 

@@ -93,13 +93,18 @@ class FlightOutputs {
 
   // encode_frame() in three steps (io/run/frame_encoder.hpp).
   void size_encoding(FrameEncoding& out) const { encoder_.size_encoding(out); }
-  void encode_pulses(const FrameView& frame, int begin, int end, FrameEncoding& out) const {
-    encoder_.encode_pulses(frame, begin, end, out);
+  void encode_pulses(const FrameView& block, int begin, FrameEncoding& out) const {
+    encoder_.encode_pulses(block, begin, out);
   }
   void finish_encoding(const FrameView& frame, const Pose& frame_start, FrameEncoding& out) const {
     encoder_.finish_encoding(frame, frame_start, out);
   }
   [[nodiscard]] const FrameEncoder& encoder() const { return encoder_; }
+  // Whether add_frame(frame, encoded) and finish_encoding() read the frame's per-pulse records
+  // (points, the quicklook): otherwise a frame given to them need hold only its index and sweep.
+  [[nodiscard]] bool reads_frame_records() const {
+    return encoder_.reads_frame_records() || quicklook_ != nullptr;
+  }
 
   // A distributed run (distributed/): the bytes of a frame were written into the temporaries at
   // their places by the process that encoded it; this adds the rest in frame order from

@@ -45,55 +45,60 @@ void FrameEncoder::size_encoding(FrameEncoding& out) const {
   out.line_blocks.resize(static_cast<std::size_t>(scan_.lines_per_frame));
 }
 
-void FrameEncoder::encode_pulses(const FrameView& frame, int begin, int end,
-                                 FrameEncoding& out) const {
+void FrameEncoder::encode_pulses(const FrameView& block, int begin, FrameEncoding& out) const {
   const int pulses = scan_.pulses_per_frame();
   const int fibers = scan_.fibers_per_line;
   const bool words = wants(OutputKind::d64);
   const std::size_t word_count =
       scan_.model == SensorModel::milows ? out.milows_words.size() : out.hellas_words.size();
-  if (begin < 0 || begin >= end || end > pulses || begin % fibers != 0 ||
-      (end % fibers != 0 && end != pulses) ||
-      frame.pulses.size() != static_cast<std::size_t>(pulses) ||
-      frame.returns.size() != frame.pulses.size() ||
+  const auto count = static_cast<std::int64_t>(block.pulses.size());
+  const std::int64_t end = std::int64_t{begin} + count;
+  if (begin < 0 || count == 0 || end > pulses || begin % fibers != 0 ||
+      (end % fibers != 0 && end != pulses) || block.returns.size() != block.pulses.size() ||
+      (!block.object_returns.empty() && block.object_returns.size() != block.pulses.size()) ||
       out.line_blocks.size() != static_cast<std::size_t>(scan_.lines_per_frame) ||
-      (words && word_count != frame.pulses.size())) {
+      (words && word_count != static_cast<std::size_t>(pulses))) {
     throw Error("outputs: pulses " + std::to_string(begin) + ".." + std::to_string(end) +
                 " are not whole lines of a frame of this scan, or the encoding is not sized");
   }
   // The block's tally and error go to the entry of its first line; its other lines' are emptied.
-  const int first_line = begin / fibers;
-  const int end_line = (end + fibers - 1) / fibers;
+  const auto first_line = static_cast<int>(begin / fibers);
+  const auto end_line = static_cast<int>((end + fibers - 1) / fibers);
   for (int line = first_line + 1; line < end_line; ++line) {
     FrameEncoding::LineBlock& empty = out.line_blocks[static_cast<std::size_t>(line)];
     FlightSummary::tally(object_count_, {}, {}, empty.tally);
     empty.error = nullptr;
   }
-  FrameEncoding::LineBlock& block = out.line_blocks[static_cast<std::size_t>(first_line)];
-  block.error = nullptr;
+  FrameEncoding::LineBlock& entry = out.line_blocks[static_cast<std::size_t>(first_line)];
+  entry.error = nullptr;
   try {
-    const auto first = static_cast<std::size_t>(begin);
-    const auto count = static_cast<std::size_t>(end - begin);
     // The tally feeds summary.json and truth.csv: without them, the block's tally stays empty.
-    const std::size_t tallied = wants(OutputKind::summary) || wants(OutputKind::truth) ? count : 0;
+    const std::size_t tallied =
+        wants(OutputKind::summary) || wants(OutputKind::truth) ? block.pulses.size() : 0;
     FlightSummary::tally(
-        object_count_, frame.pulses.subspan(first, tallied), frame.returns.subspan(first, tallied),
-        block.tally, wants(OutputKind::summary) ? TallyScope::summary : TallyScope::object_hits,
-        frame.object_returns.empty() ? frame.object_returns
-                                     : frame.object_returns.subspan(first, tallied));
+        object_count_, block.pulses.first(tallied), block.returns.first(tallied), entry.tally,
+        wants(OutputKind::summary) ? TallyScope::summary : TallyScope::object_hits,
+        block.object_returns.empty() ? block.object_returns : block.object_returns.first(tallied));
     if (words) {
-      const auto block_pulses = frame.pulses.subspan(first, count);
-      const auto block_returns = frame.returns.subspan(first, count);
+      const auto first = static_cast<std::size_t>(begin);
       if (scan_.model == SensorModel::milows) {
-        pack_milows_frame(block_pulses, block_returns,
-                          std::span<std::uint64_t>(out.milows_words).subspan(first, count));
+        pack_milows_frame(
+            block.pulses, block.returns,
+            std::span<std::uint64_t>(out.milows_words).subspan(first, block.pulses.size()));
       } else {
-        pack_hellas_frame(scan_, frame.sweep, block_pulses, block_returns,
-                          std::span<std::uint32_t>(out.hellas_words).subspan(first, count));
+        pack_hellas_frame(
+            scan_, block.sweep, block.pulses, block.returns,
+            std::span<std::uint32_t>(out.hellas_words).subspan(first, block.pulses.size()));
+        // What the word file takes once: the HELLAS header word, before the first frame (set
+        // for every frame, from its first pulse).
+        if (begin == 0) {
+          out.hellas_header_word =
+              hellas_file_header_word(block.sweep, block.pulses.front().time_s);
+        }
       }
     }
   } catch (...) {
-    block.error = std::current_exception();
+    entry.error = std::current_exception();
   }
 }
 
@@ -110,10 +115,6 @@ void FrameEncoder::finish_encoding(const FrameView& frame, const Pose& frame_sta
   }
   if (out.error) return;
   try {
-    // What the word file takes once: the HELLAS header word, before the first frame.
-    if (wants(OutputKind::d64) && scan_.model == SensorModel::hellas) {
-      out.hellas_header_word = hellas_file_header_word(frame.sweep, frame.pulses.front().time_s);
-    }
     if (makes_points()) {
       // flight.mcap alone takes the East-North-Up positions only: no geodesy.
       frame_points(frame, geodesy_, out.points, recorded_returns(scan_.model), wants_points());
@@ -136,7 +137,7 @@ void FrameEncoder::finish_encoding(const FrameView& frame, const Pose& frame_sta
 void FrameEncoder::encode_frame(const FrameView& frame, const Pose& frame_start,
                                 FrameEncoding& out) const {
   size_encoding(out);
-  encode_pulses(frame, 0, static_cast<int>(frame.pulses.size()), out);
+  encode_pulses(frame, 0, out);
   finish_encoding(frame, frame_start, out);
 }
 

@@ -38,13 +38,15 @@ class FrameEncoder {
   // encode_frame() in three steps, so the per-pulse part (the words and the summary tally) runs on
   // each block of a frame while the simulation has it in cache (FrameBlockDone of
   // engine/frame_simulator.hpp): size_encoding() sizes an encoding's buffers for this scan, once;
-  // encode_pulses() encodes pulses [begin, end) of the frame, whole lines, concurrently for
-  // disjoint blocks of the frame (every line in exactly one block), an error kept in `out`; after
-  // the frame's last block, finish_encoding() does the rest. The result is encode_frame()'s.
-  // encode_pulses throws owsim::Error if the pulses are not whole lines of a frame of this scan or
-  // `out` is not sized.
+  // encode_pulses() encodes a block of the frame — `block` holds the records of pulses [begin,
+  // begin + block.pulses.size()), whole lines, and nothing else — concurrently for disjoint blocks
+  // of the frame (every line in exactly one block), an error kept in `out`; after the frame's last
+  // block, finish_encoding() does the rest. The result is encode_frame()'s. encode_pulses throws
+  // owsim::Error if the pulses are not whole lines of a frame of this scan or `out` is not sized.
+  // finish_encoding() reads the frame's records only when reads_frame_records(): otherwise
+  // `frame` need hold only its index and sweep (FrameRecordScope::block).
   void size_encoding(FrameEncoding& out) const;
-  void encode_pulses(const FrameView& frame, int begin, int end, FrameEncoding& out) const;
+  void encode_pulses(const FrameView& block, int begin, FrameEncoding& out) const;
   void finish_encoding(const FrameView& frame, const Pose& frame_start, FrameEncoding& out) const;
   // All three for a whole frame; `frame_start` is the aircraft's pose at its first pulse. An
   // error is kept in `out`, not thrown.
@@ -54,6 +56,8 @@ class FrameEncoder {
   [[nodiscard]] bool wants_points() const { return owsim::wants_points(outputs_); }
   // Whether a frame's points are made: for a point file or flight.mcap.
   [[nodiscard]] bool makes_points() const { return wants_points() || mcap_.has_value(); }
+  // Whether finish_encoding() reads the frame's per-pulse records (its points do).
+  [[nodiscard]] bool reads_frame_records() const { return makes_points(); }
   [[nodiscard]] const ScanParams& scan() const { return scan_; }
 
  private:
