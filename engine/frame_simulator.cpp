@@ -37,12 +37,17 @@ FrameSimulator::FrameSimulator(const FrameSimulatorParams& params, const EmbreeS
 }
 
 FrameSimulator::BlockRecords FrameSimulator::BlockScratch::records(std::size_t count) {
-  pulses.resize(count);
-  rays.resize(count);
-  active.resize(count);
-  returns.resize(count);
-  object_returns.resize(count);
-  return BlockRecords{pulses, rays, active, returns, object_returns};
+  // Grown, never shrunk: a frame's last, shorter block leaves the buffers as they are.
+  if (pulses.size() < count) {
+    pulses.resize(count);
+    rays.resize(count);
+    active.resize(count);
+    returns.resize(count);
+    object_returns.resize(count);
+  }
+  return BlockRecords{std::span(pulses).first(count), std::span(rays).first(count),
+                      std::span(active).first(count), std::span(returns).first(count),
+                      std::span(object_returns).first(count)};
 }
 
 FrameSimulator::BlockRecords FrameSimulator::frame_records(FrameResult& out, std::size_t begin,
