@@ -125,6 +125,45 @@ class BlockRays {
     packet.hit.geomID[lane] = kNoHit;
     packet.hit.instID[0][lane] = kNoHit;
   }
+  // Rays [0, n) of the block in 8-ray packets (packet8 only), as set() writes each: ray i from
+  // the block's arrays (its pulse's doubles), with id ids[i], from 0 to tfar[i], no hit. The
+  // lanes of the last packet past n repeat its first ray (Embree skips them: they are not
+  // valid); the arrays, ids and tfar are padded so. Field by field over whole packets, on vector
+  // lanes.
+  void set_packets(RayArrays& arrays, std::array<unsigned, FrameTracer::kChunk>& ids,
+                   std::array<float, FrameTracer::kChunk>& tfar, unsigned n) {
+    const unsigned padded = (n + 7) / 8 * 8;
+    for (unsigned i = n; i < padded; ++i) {
+      const unsigned first = i - i % 8;
+      for (int axis = 0; axis < 3; ++axis) {
+        arrays.origin[axis][i] = arrays.origin[axis][first];
+        arrays.dir[axis][i] = arrays.dir[axis][first];
+      }
+      ids[i] = ids[first];
+      tfar[i] = tfar[first];
+    }
+    std::fill_n(traced_.begin(), padded, std::uint8_t{1});
+    for (unsigned p = 0; p < padded / 8; ++p) {
+      RTCRayHit8& packet = packets_[p];
+      const unsigned at = p * 8;
+      for (unsigned lane = 0; lane < 8; ++lane) {
+        packet.ray.org_x[lane] = static_cast<float>(arrays.origin[0][at + lane]);
+        packet.ray.org_y[lane] = static_cast<float>(arrays.origin[1][at + lane]);
+        packet.ray.org_z[lane] = static_cast<float>(arrays.origin[2][at + lane]);
+        packet.ray.dir_x[lane] = static_cast<float>(arrays.dir[0][at + lane]);
+        packet.ray.dir_y[lane] = static_cast<float>(arrays.dir[1][at + lane]);
+        packet.ray.dir_z[lane] = static_cast<float>(arrays.dir[2][at + lane]);
+        packet.ray.tnear[lane] = 0.0f;
+        packet.ray.tfar[lane] = tfar[at + lane];
+        packet.ray.time[lane] = 0.0f;
+        packet.ray.mask[lane] = 0xFFFFFFFFu;  // Debian's Embree is built with ray masks
+        packet.ray.id[lane] = ids[at + lane];
+        packet.ray.flags[lane] = 0;
+        packet.hit.geomID[lane] = kNoHit;
+        packet.hit.instID[0][lane] = kNoHit;
+      }
+    }
+  }
   // Ray i again from 0 to tfar, its hit cleared; `traced` false leaves it out of the next query.
   void restart(unsigned i, float tfar, bool traced) {
     traced_[i] = traced ? 1 : 0;
@@ -139,9 +178,6 @@ class BlockRays {
     packet.ray.tfar[i % 8] = tfar;
     packet.hit.geomID[i % 8] = kNoHit;
     packet.hit.instID[0][i % 8] = kNoHit;
-  }
-  [[nodiscard]] unsigned id(unsigned i) const {
-    return api_ == TraceApi::packet8 ? packets_[i / 8].ray.id[i % 8] : rayhits_[i].ray.id;
   }
   [[nodiscard]] float tfar(unsigned i) const {
     return api_ == TraceApi::packet8 ? packets_[i / 8].ray.tfar[i % 8] : rayhits_[i].ray.tfar;
@@ -272,6 +308,7 @@ void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const st
 
     // Gather the active rays of the block; inactive ones keep empty candidate lists.
     std::array<unsigned, kChunk> ids;
+    std::array<float, kChunk> search_to;  // each ray's search end in the solids pass
     unsigned n = 0;
     for (unsigned id = block; id < block_end; ++id) {
       candidates[id].clear();
@@ -289,16 +326,13 @@ void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const st
     std::fill_n(arrays.t_max, n, max_range);
     first_triangle_hits(level_ground, arrays, n, ground_m.data(), ground_triangle.data());
     for (unsigned i = 0; i < n; ++i) {
-      block_rays.set(
-          i, rays[ids[i]], ids[i],
-          std::isnan(ground_m[i]) ? tfar : std::min(tfar, EmbreeScene::search_end(ground_m[i])));
+      search_to[i] =
+          std::isnan(ground_m[i]) ? tfar : std::min(tfar, EmbreeScene::search_end(ground_m[i]));
     }
-    // A packet's unused lanes repeat its first ray (Embree skips them: they are not valid).
     if (api_ == TraceApi::packet8) {
-      for (unsigned i = n; i % 8 != 0; ++i) {
-        const unsigned first = i - i % 8;
-        block_rays.set(i, rays[block_rays.id(first)], block_rays.id(first), block_rays.tfar(first));
-      }
+      block_rays.set_packets(arrays, ids, search_to, n);
+    } else {
+      for (unsigned i = 0; i < n; ++i) block_rays.set(i, rays[ids[i]], ids[i], search_to[i]);
     }
 
     // Pass 1: the nearest solid (pole, tree, mesh, ground) along each central ray; the angles
@@ -316,7 +350,7 @@ void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const st
     }
     batch.clear();
     for (unsigned i = 0; i < n; ++i) {
-      const unsigned id = block_rays.id(i);
+      const unsigned id = ids[i];
       std::optional<TriangleHit> ground;
       if (!std::isnan(ground_m[i])) {
         ground = TriangleHit{ground_m[i], level_ground[ground_triangle[i]].normal};
@@ -327,7 +361,7 @@ void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const st
     batch.evaluate();
     std::size_t slot = 0;
     for (unsigned i = 0; i < n; ++i) {
-      PulseCandidates& pulse = candidates[block_rays.id(i)];
+      PulseCandidates& pulse = candidates[ids[i]];
       if (pulse.has_solid()) pulse.complete_solid(batch.result(slot++));
     }
 
@@ -335,7 +369,7 @@ void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const st
     // hit; tfar reaches a float-safety margin beyond it (EmbreeScene::search_end), so a
     // segment whose closest approach lies before the solid is always reported.
     trace_wires(context, n, [&](unsigned i) {
-      const PulseCandidates& pulse = candidates[block_rays.id(i)];
+      const PulseCandidates& pulse = candidates[ids[i]];
       return pulse.has_solid() ? std::min(tfar, EmbreeScene::search_end(pulse.solid().range_m))
                                : tfar;
     });
