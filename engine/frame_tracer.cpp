@@ -179,6 +179,27 @@ class BlockRays {
     packet.hit.geomID[i % 8] = kNoHit;
     packet.hit.instID[0][i % 8] = kNoHit;
   }
+  // restart(i, t_max[i], meets[i] != 0) for the rays [0, n) of packets (packet8 only), over
+  // whole packets where they are full.
+  void restart_packets(const double* t_max, const std::int64_t* meets, unsigned n) {
+    for (unsigned i = 0; i < n; ++i) traced_[i] = meets[i] != 0 ? 1 : 0;
+    for (unsigned at = 0; at < n; at += 8) {
+      RTCRayHit8& packet = packets_[at / 8];
+      if (at + 8 <= n) {
+        for (unsigned lane = 0; lane < 8; ++lane) {
+          packet.ray.tfar[lane] = static_cast<float>(t_max[at + lane]);
+          packet.hit.geomID[lane] = kNoHit;
+          packet.hit.instID[0][lane] = kNoHit;
+        }
+        continue;
+      }
+      for (unsigned lane = 0; at + lane < n; ++lane) {
+        packet.ray.tfar[lane] = static_cast<float>(t_max[at + lane]);
+        packet.hit.geomID[lane] = kNoHit;
+        packet.hit.instID[0][lane] = kNoHit;
+      }
+    }
+  }
   [[nodiscard]] float tfar(unsigned i) const {
     return api_ == TraceApi::packet8 ? packets_[i / 8].ray.tfar[i % 8] : rayhits_[i].ray.tfar;
   }
@@ -288,8 +309,12 @@ void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const st
   const auto trace_wires = [&](TraceContext& context, unsigned n, const auto& search_end) {
     for (unsigned i = 0; i < n; ++i) arrays.t_max[i] = static_cast<double>(search_end(i));
     rays_meet_box(scene_->wire_bounds(), arrays, n, meets_wires.data());
-    for (unsigned i = 0; i < n; ++i) {
-      block_rays.restart(i, static_cast<float>(arrays.t_max[i]), meets_wires[i] != 0);
+    if (api_ == TraceApi::packet8) {
+      block_rays.restart_packets(arrays.t_max, meets_wires.data(), n);
+    } else {
+      for (unsigned i = 0; i < n; ++i) {
+        block_rays.restart(i, static_cast<float>(arrays.t_max[i]), meets_wires[i] != 0);
+      }
     }
     block_rays.intersect(scene_->wires(), context, n);
   };
