@@ -302,12 +302,11 @@ void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const st
   static_assert(kChunk <= SurfaceEnergyBatch::kCapacity);
   const double max_range = timeout_range_m(scene_->receiver().counter);
   const auto tfar = static_cast<float>(max_range);
-  // The wire pass over the block's n rays, ray i searched up to search_end(i); a ray that misses
+  // The wire pass over the block's n rays, ray i searched up to arrays.t_max[i]; a ray that misses
   // the wires' bounds up to there is left out (EmbreeScene::wire_bounds): Embree's own test of
   // its root costs a call.
   std::array<std::int64_t, kChunk> meets_wires;
-  const auto trace_wires = [&](TraceContext& context, unsigned n, const auto& search_end) {
-    for (unsigned i = 0; i < n; ++i) arrays.t_max[i] = static_cast<double>(search_end(i));
+  const auto trace_wires = [&](TraceContext& context, unsigned n) {
     rays_meet_box(scene_->wire_bounds(), arrays, n, meets_wires.data());
     if (api_ == TraceApi::packet8) {
       block_rays.restart_packets(arrays.t_max, meets_wires.data(), n);
@@ -366,11 +365,12 @@ void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const st
     if (work_ == TraceWork::traversal_only) {
       // The wire pass as far as Embree's own solid hit (else the level ground's search end, where
       // the solids pass stopped), with the same margin and cull.
-      trace_wires(context, n, [&](unsigned i) {
+      for (unsigned i = 0; i < n; ++i) {
         const bool solid = block_rays.hit(i).geomID != kNoHit;
-        return solid ? std::min(tfar, EmbreeScene::search_end(block_rays.tfar(i)))
-                     : block_rays.tfar(i);
-      });
+        arrays.t_max[i] = solid ? std::min(tfar, EmbreeScene::search_end(block_rays.tfar(i)))
+                                : block_rays.tfar(i);
+      }
+      trace_wires(context, n);
       continue;
     }
     batch.clear();
@@ -384,20 +384,21 @@ void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const st
                    candidates[id], batch);
     }
     batch.evaluate();
+    // Each solid's angle and energy, and, while its candidates are at hand, the ray's search end
+    // in pass 2: the wires in front of the solid. The filter offers only segments nearer than the
+    // solid hit; tfar reaches a float-safety margin beyond it (EmbreeScene::search_end), so a
+    // segment whose closest approach lies before the solid is always reported.
     std::size_t slot = 0;
     for (unsigned i = 0; i < n; ++i) {
       PulseCandidates& pulse = candidates[ids[i]];
-      if (pulse.has_solid()) pulse.complete_solid(batch.result(slot++));
+      if (!pulse.has_solid()) {
+        arrays.t_max[i] = tfar;
+        continue;
+      }
+      pulse.complete_solid(batch.result(slot++));
+      arrays.t_max[i] = std::min(tfar, EmbreeScene::search_end(pulse.solid().range_m));
     }
-
-    // Pass 2: the wires in front of it. The filter offers only segments nearer than the solid
-    // hit; tfar reaches a float-safety margin beyond it (EmbreeScene::search_end), so a
-    // segment whose closest approach lies before the solid is always reported.
-    trace_wires(context, n, [&](unsigned i) {
-      const PulseCandidates& pulse = candidates[ids[i]];
-      return pulse.has_solid() ? std::min(tfar, EmbreeScene::search_end(pulse.solid().range_m))
-                               : tfar;
-    });
+    trace_wires(context, n);
   }
 }
 
