@@ -5,7 +5,11 @@
 #include <tbb/info.h>
 #include <tbb/task_arena.h>
 
+#include <random>
+#include <vector>
+
 #include "bench/bench_fixture.hpp"
+#include "sensor/receiver_noise.hpp"
 
 namespace owsim {
 namespace {
@@ -43,6 +47,31 @@ void BM_SelectReturns(benchmark::State& state) {
   state.SetItemsProcessed(pulses);
 }
 BENCHMARK(BM_SelectReturns)->Unit(benchmark::kMicrosecond);
+
+// An echo within kSureEchoSigmas σ_n of the threshold is decided by u ≤ Φ((e − T)/σ_n): Arg 0 by
+// erfc (standard_normal_cdf) every time, Arg 1 by the table with erfc only near the chord
+// (uniform_within_standard_normal_cdf). Items are decisions; (u, x) spread as the draws are.
+void BM_EchoDecision(benchmark::State& state) {
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::uniform_real_distribution<double> x_in(-kSureEchoSigmas, kSureEchoSigmas);
+  std::vector<double> u(4096), x(4096);
+  for (std::size_t i = 0; i < u.size(); ++i) {
+    u[i] = unit(random);
+    x[i] = x_in(random);
+  }
+  const bool tabled = state.range(0) != 0;
+  for (auto _ : state) {
+    int registered = 0;
+    for (std::size_t i = 0; i < u.size(); ++i) {
+      registered += tabled ? uniform_within_standard_normal_cdf(u[i], x[i])
+                           : u[i] <= standard_normal_cdf(x[i]);
+    }
+    benchmark::DoNotOptimize(registered);
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(u.size()));
+}
+BENCHMARK(BM_EchoDecision)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace owsim

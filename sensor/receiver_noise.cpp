@@ -1,6 +1,7 @@
 #include "sensor/receiver_noise.hpp"
 
 #include <algorithm>
+#include <array>
 #include <boost/math/special_functions/gamma.hpp>
 #include <cmath>
 #include <limits>
@@ -75,6 +76,41 @@ double noise_sigma(double range_m, double background, double noise_at_1km) {
 }
 
 double standard_normal_cdf(double x) { return 0.5 * std::erfc(-x / std::numbers::sqrt2); }
+
+namespace {
+
+// Φ at kCdfNodes + 1 evenly spaced nodes over [−kSureEchoSigmas, kSureEchoSigmas], each node's
+// value standard_normal_cdf's own. Between nodes the chord differs from Φ by at most
+// h²/8 · max|Φ''| = h²/8 · φ(1) = 2.1e-6 for h = 17/2048, plus the nodes' and the chord's
+// rounding (below 1e-15); kCdfBand is twice that.
+constexpr int kCdfNodes = 2048;
+constexpr double kCdfStep = 2.0 * kSureEchoSigmas / kCdfNodes;
+constexpr double kCdfBand = 4.2e-6;
+
+const std::array<double, kCdfNodes + 1>& cdf_nodes() {
+  static const std::array<double, kCdfNodes + 1> nodes = [] {
+    std::array<double, kCdfNodes + 1> values{};
+    for (int i = 0; i <= kCdfNodes; ++i) {
+      values[static_cast<std::size_t>(i)] = standard_normal_cdf(-kSureEchoSigmas + i * kCdfStep);
+    }
+    return values;
+  }();
+  return nodes;
+}
+
+}  // namespace
+
+bool uniform_within_standard_normal_cdf(double u, double x) {
+  if (!(std::abs(x) < kSureEchoSigmas)) return u <= standard_normal_cdf(x);
+  const double at = (x + kSureEchoSigmas) / kCdfStep;
+  const int node = std::min(kCdfNodes - 1, static_cast<int>(at));
+  const std::array<double, kCdfNodes + 1>& nodes = cdf_nodes();
+  const double low = nodes[static_cast<std::size_t>(node)];
+  const double chord = low + (at - node) * (nodes[static_cast<std::size_t>(node) + 1] - low);
+  if (u <= chord - kCdfBand) return true;
+  if (u > chord + kCdfBand) return false;
+  return u <= standard_normal_cdf(x);
+}
 
 double echo_detection_probability(double energy_rel, double threshold, double sigma) {
   if (!(sigma > 0.0)) return energy_rel >= threshold ? 1.0 : 0.0;
@@ -199,7 +235,7 @@ bool ReceiverNoise::echo_registers(double energy_rel, double range_m, double bac
   // u on (0, 1]: 1 − a [0, 1) uniform.
   const double u =
       1.0 - uniform01({seed, frame, pulse_with(pulse, object), RandomPurpose::echo_detection});
-  return u <= standard_normal_cdf(margin / s);
+  return uniform_within_standard_normal_cdf(u, margin / s);
 }
 
 bool ReceiverNoise::group_is_quiet(std::uint64_t seed, std::int64_t frame,

@@ -44,6 +44,10 @@ struct SunPosition {
 [[nodiscard]] double noise_sigma(double range_m, double background, double noise_at_1km);
 // Φ(x), the standard normal distribution function
 [[nodiscard]] double standard_normal_cdf(double x);
+// Whether u ≤ standard_normal_cdf(x): the same answer, from a table of Φ where u lies clear of
+// it (no erfc), from standard_normal_cdf itself where u lies within the table's error bound of it
+// or |x| > kSureEchoSigmas.
+[[nodiscard]] bool uniform_within_standard_normal_cdf(double u, double x);
 // Pd = Φ((e − T) / σ_n)  (SENSOR-SPEC §11 echo detection); a step at T when σ_n = 0
 [[nodiscard]] double echo_detection_probability(double energy_rel, double threshold, double sigma);
 // ν = exp(−T² / 2σ_n²) / (2√3 τ_p), upward crossings per second  (SENSOR-SPEC §11, Rice)
