@@ -134,27 +134,26 @@ void FrameSimulator::receive_range(std::int64_t frame, const BlockRecords& block
     }
     select_returns(met.gather(gathered), receiver, params_.seed, frame, k, returns, noise);
   };
-  // A run of pulses at once: the first return's range-noise draws on vector lanes (the same bits
-  // as one at a time: geometry/keyed_random.hpp random_blocks), then the common pulse — one
-  // surface, no wire, clear air, no false trigger in its group — decided by its echo alone over
-  // arrays (sensor/single_return_batch.hpp), one that met nothing has no return; the others, and
-  // any the batch leaves undecided, take the receiver's general path.
+  // A run of pulses at once: the common pulse — one surface, no wire, clear air, no false trigger
+  // in its group — decided by its echo alone over arrays (sensor/single_return_batch.hpp), one
+  // that met nothing has no return; the others, and any the batch leaves undecided, take the
+  // receiver's general path. The first return's range-noise draws are made on vector lanes for
+  // the pulses that may have a return, and for them only (the same bits as one at a time:
+  // geometry/keyed_random.hpp random_blocks); a pulse that met nothing in a quiet group, or the
+  // reference fiber's (which draws its own), has none.
   const bool range_noise = range_noise_sigma_m(receiver) != 0.0;
+  std::array<std::int64_t, kNoiseDrawsAhead> drawn_pulse;  // draw d is pulse drawn_pulse[d]'s
   std::array<PhiloxBlock, kNoiseDrawsAhead> first_range_noise;
   std::array<double, kNoiseDrawsAhead> first_normals;
+  std::array<std::int16_t, kNoiseDrawsAhead> draw_of;     // pulse run + at's draw, or −1
+  std::array<std::int16_t, kNoiseDrawsAhead> batch_draw;  // batch slot s's draw
   std::array<std::int16_t, kNoiseDrawsAhead> batch_slot;
   static_assert(kNoiseDrawsAhead <= SingleReturnBatch::kCapacity);
   SingleReturnBatch& batch = single_returns_.local();
   for (int run = begin; run < end; run += static_cast<int>(kNoiseDrawsAhead)) {
     const int run_end = std::min(end, run + static_cast<int>(kNoiseDrawsAhead));
-    const auto run_size = static_cast<std::size_t>(run_end - run);
-    if (range_noise) {
-      random_blocks(params_.seed, frame, run, RandomPurpose::range_noise_first,
-                    std::span(first_range_noise.data(), run_size));
-      first_block_normals(std::span(first_range_noise.data(), run_size),
-                          std::span(first_normals.data(), run_size));
-    }
     batch.clear();
+    std::size_t draws = 0;
     // group_has_no_trigger, its group's draw taken once for the pulses of the group.
     std::int64_t quiet_group = -1;
     bool quiet = false;
@@ -162,25 +161,41 @@ void FrameSimulator::receive_range(std::int64_t frame, const BlockRecords& block
       const auto at = static_cast<std::size_t>(k - run);
       const PulseCandidates& met = candidates[static_cast<std::size_t>(k - begin)];
       batch_slot[at] = kGeneralPath;
-      if (block.active[static_cast<std::size_t>(k - begin)] == 0 || !weather_.empty() ||
-          !met.wires().empty()) {
-        continue;
-      }
-      const double background = met.has_solid() ? met.solid_background() : noise_.sky_background();
-      if (noise_.on()) {
+      draw_of[at] = -1;
+      if (block.active[static_cast<std::size_t>(k - begin)] == 0) continue;
+      bool general = !weather_.empty() || !met.wires().empty();
+      if (!general && noise_.on()) {
+        const double background =
+            met.has_solid() ? met.solid_background() : noise_.sky_background();
         const std::int64_t group = k / ReceiverNoise::kTriggerGroup;
         if (group != quiet_group) {
           quiet_group = group;
           quiet = noise_.group_is_quiet(params_.seed, frame, group);
         }
-        if (!quiet || !(background <= noise_.max_background())) continue;
+        general = !quiet || !(background <= noise_.max_background());
       }
-      if (!met.has_solid()) {  // nothing met, no false trigger: no return
+      if (!general && !met.has_solid()) {  // nothing met, no false trigger: no return
         batch_slot[at] = kNoReturn;
         continue;
       }
-      batch_slot[at] = static_cast<std::int16_t>(
-          batch.add(met.solid(), met.solid_background(), range_noise ? first_normals[at] : 0.0));
+      draw_of[at] = static_cast<std::int16_t>(draws);
+      drawn_pulse[draws] = k;
+      if (!general) {
+        batch_draw[batch.size()] = static_cast<std::int16_t>(draws);
+        batch_slot[at] = static_cast<std::int16_t>(
+            batch.add(met.solid(), met.solid_background(), 0.0));  // its normal set below
+      }
+      ++draws;
+    }
+    if (range_noise) {
+      random_blocks(params_.seed, frame, std::span<const std::int64_t>(drawn_pulse.data(), draws),
+                    RandomPurpose::range_noise_first, std::span(first_range_noise.data(), draws));
+      first_block_normals(std::span(first_range_noise.data(), draws),
+                          std::span(first_normals.data(), draws));
+      for (std::size_t slot = 0; slot < batch.size(); ++slot) {
+        batch.set_range_noise_normal(slot,
+                                     first_normals[static_cast<std::size_t>(batch_draw[slot])]);
+      }
     }
     batch.evaluate();
     for (int k = run; k < run_end; ++k) {
@@ -194,7 +209,10 @@ void FrameSimulator::receive_range(std::int64_t frame, const BlockRecords& block
                                   SingleReturnBatch::Outcome::undecided) {
         batch.write(static_cast<std::size_t>(slot), candidates[index].solid(), returns);
       } else {
-        receive_pulse(k, index, returns, range_noise ? &first_range_noise[at] : nullptr);
+        const int draw = draw_of[at];
+        receive_pulse(k, index, returns,
+                      range_noise && draw >= 0 ? &first_range_noise[static_cast<std::size_t>(draw)]
+                                               : nullptr);
       }
       // While the returns are in registers: no pass over the 88-byte records later.
       block.object_returns[index] = object_return_bits(returns, named_objects_);

@@ -6,6 +6,8 @@
 #include <limits>
 #include <numbers>
 
+#include "geometry/error.hpp"
+
 #if defined(__x86_64__)
 #include <immintrin.h>
 #endif
@@ -245,17 +247,16 @@ void philox_words(std::size_t n, std::uint32_t* w0, std::uint32_t* w1, std::uint
   philox_lanes(n, w0, w1, w2, w3, key0, key1);
 }
 
-}  // namespace
-
-void random_blocks(std::uint64_t seed, std::int64_t frame, std::int64_t first_pulse,
-                   RandomPurpose purpose, std::span<PhiloxBlock> out) {
+// random_block of the keys (seed, frame, pulse_at(i), purpose) for i < out.size(), over the lanes.
+template <typename PulseAt>
+void blocks_of(std::uint64_t seed, std::int64_t frame, const PulseAt& pulse_at,
+               RandomPurpose purpose, std::span<PhiloxBlock> out) {
   const std::array<std::uint32_t, 2> key = philox_key(seed);
   alignas(64) std::uint32_t words[4][kLanes];
   for (std::size_t done = 0; done < out.size(); done += kLanes) {
     const std::size_t n = std::min(kLanes, out.size() - done);
     for (std::size_t i = 0; i < n; ++i) {
-      const PhiloxBlock counter =
-          counter_of({seed, frame, first_pulse + static_cast<std::int64_t>(done + i), purpose});
+      const PhiloxBlock counter = counter_of({seed, frame, pulse_at(done + i), purpose});
       for (std::size_t w = 0; w < 4; ++w) words[w][i] = counter[w];
     }
     philox_words(n, words[0], words[1], words[2], words[3], key[0], key[1]);
@@ -263,6 +264,21 @@ void random_blocks(std::uint64_t seed, std::int64_t frame, std::int64_t first_pu
       out[done + i] = {words[0][i], words[1][i], words[2][i], words[3][i]};
     }
   }
+}
+
+}  // namespace
+
+void random_blocks(std::uint64_t seed, std::int64_t frame, std::int64_t first_pulse,
+                   RandomPurpose purpose, std::span<PhiloxBlock> out) {
+  blocks_of(
+      seed, frame, [&](std::size_t i) { return first_pulse + static_cast<std::int64_t>(i); },
+      purpose, out);
+}
+
+void random_blocks(std::uint64_t seed, std::int64_t frame, std::span<const std::int64_t> pulses,
+                   RandomPurpose purpose, std::span<PhiloxBlock> out) {
+  if (pulses.size() != out.size()) throw Error("random blocks: pulses and blocks differ in count");
+  blocks_of(seed, frame, [&](std::size_t i) { return pulses[i]; }, purpose, out);
 }
 
 double uniform01(const RandomKey& key) {

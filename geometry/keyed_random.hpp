@@ -77,5 +77,9 @@ void first_block_normals(std::span<const PhiloxBlock> blocks, std::span<double> 
 // per-pulse draws of a block of pulses, batched.
 void random_blocks(std::uint64_t seed, std::int64_t frame, std::int64_t first_pulse,
                    RandomPurpose purpose, std::span<PhiloxBlock> out);
+// The same for the keys (seed, frame, pulses[i], purpose), any pulses in any order: only the
+// draws a caller needs (pulses.size() == out.size(), else owsim::Error).
+void random_blocks(std::uint64_t seed, std::int64_t frame, std::span<const std::int64_t> pulses,
+                   RandomPurpose purpose, std::span<PhiloxBlock> out);
 
 }  // namespace owsim

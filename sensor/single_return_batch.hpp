@@ -34,6 +34,10 @@ class SingleReturnBatch {
     normal_[size_] = range_noise_normal;
     return size_++;
   }
+  // The standard normal of a slot's range-noise key, when it is drawn after the slot was added.
+  void set_range_noise_normal(std::size_t slot, double range_noise_normal) {
+    normal_[slot] = range_noise_normal;
+  }
   // Decides every slot.
   void evaluate();
   [[nodiscard]] std::size_t size() const { return size_; }

@@ -11,12 +11,14 @@
 #include <filesystem>
 #include <fstream>
 #include <numbers>
+#include <random>
 #include <set>
 #include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "geometry/error.hpp"
 #include "geometry/keyed_random.hpp"
 #include "python_oracle.hpp"
 
@@ -288,6 +290,30 @@ TEST(KeyedRandom, BlocksOfPulsesAreEachPulsesOwnBlock) {
       }
     }
   }
+}
+
+// The receiver draws only the pulses that may have a return: the blocks of any list of pulses (out
+// of order, repeated, with the high bits, across the lanes' 64) are each its key's own.
+TEST(KeyedRandom, BlocksOfListedPulsesAreEachPulsesOwnBlock) {
+  std::mt19937_64 random(11);
+  for (const std::size_t count :
+       {std::size_t{0}, std::size_t{1}, std::size_t{64}, std::size_t{65}, std::size_t{256}}) {
+    std::vector<std::int64_t> pulses(count);
+    for (std::int64_t& pulse : pulses) {
+      pulse = static_cast<std::int64_t>(random() % 3 == 0 ? random() >> 8 : random() % 20352);
+    }
+    if (count > 2) pulses[2] = pulses[1];
+    std::vector<PhiloxBlock> blocks(count);
+    random_blocks(0x1234u, -5, pulses, RandomPurpose::echo_detection, blocks);
+    for (std::size_t i = 0; i < count; ++i) {
+      ASSERT_EQ(blocks[i], random_block({0x1234u, -5, pulses[i], RandomPurpose::echo_detection}))
+          << count << " " << i;
+    }
+  }
+  std::vector<PhiloxBlock> one(1);
+  EXPECT_THROW(random_blocks(1, 2, std::span<const std::int64_t>(), RandomPurpose::echo_detection,
+                             one),
+               Error);
 }
 
 // The receiver's batch takes the range-noise normals of a run of pulses from their blocks at
