@@ -46,7 +46,7 @@ struct SunPosition {
 [[nodiscard]] double standard_normal_cdf(double x);
 // Whether u ≤ standard_normal_cdf(x): the same answer, from a table of Φ where u lies clear of
 // it (no erfc), from standard_normal_cdf itself where u lies within the table's error bound of it
-// or |x| > kSureEchoSigmas.
+// or |x| > kSureEchoSigmas: an echo's registration, u ≤ Pd  (SENSOR-SPEC §11 echo detection)
 [[nodiscard]] bool uniform_within_standard_normal_cdf(double u, double x);
 // Pd = Φ((e − T) / σ_n)  (SENSOR-SPEC §11 echo detection); a step at T when σ_n = 0
 [[nodiscard]] double echo_detection_probability(double energy_rel, double threshold, double sigma);
