@@ -22,6 +22,7 @@ nlohmann::ordered_json to_json(const ThroughputReport& report) {
           {"trace_only_pulses_per_s", report.trace_only_pulses_per_s},
           {"traversal_only_pulses_per_s", report.traversal_only_pulses_per_s},
           {"traversal_share_paired", report.traversal_share_paired},
+          {"end_to_end_over_trace_paired", report.end_to_end_over_trace_paired},
           {"brute_force_pulses_per_s", report.brute_force_pulses_per_s},
           {"single_thread_pulses_per_s", report.single_thread_pulses_per_s},
           {"las_pulses_per_s", report.las_pulses_per_s},
@@ -47,9 +48,10 @@ void print_text(const ThroughputReport& r) {
              r.pulses, r.threads, r.repeats);
   fmt::print(
       "  end-to-end     {:>12.0f} pulses/s  {:6.2f}x real time ({:.0f} pulses/s), "
-      "{:.2f} of trace-only\n",
+      "{:.2f} of trace-only ({:.2f} paired by round, median)\n",
       r.end_to_end_pulses_per_s, r.realtime_factor, r.prf_hz,
-      ratio(r.end_to_end_pulses_per_s, r.trace_only_pulses_per_s));
+      ratio(r.end_to_end_pulses_per_s, r.trace_only_pulses_per_s),
+      r.end_to_end_over_trace_paired);
   fmt::print(
       "  trace-only     {:>12.0f} pulses/s  {} won (per_ray {:.0f}, stream {:.0f}, "
       "packet8 {:.0f})\n",

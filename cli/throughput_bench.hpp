@@ -69,6 +69,9 @@ struct ThroughputReport {
   // Traversal-only's seconds over end-to-end's (on every thread), each round's pair, the median:
   // the share of a run that is Embree's traversal.
   double traversal_share_paired = 0.0;
+  // Trace-only's seconds over end-to-end's (on every thread), each round's pair, the median: the
+  // end-to-end-over-trace-only figure with the machine's drift between rounds paired out.
+  double end_to_end_over_trace_paired = 0.0;
 };
 
 [[nodiscard]] ThroughputReport measure_throughput(const ThroughputOptions& options);
