@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 
 #include "geometry/error.hpp"
+#include "geometry/exact_round.hpp"
 #include "geometry/vector_clones.hpp"
 #include "sensor/fiber_layout.hpp"
 #include "sensor/motor_encoder.hpp"
@@ -51,6 +53,7 @@ struct ChunkArrays {
   alignas(64) double time_s[kMaxChunk];
   alignas(64) double mirror_beta[kMaxChunk];
   alignas(64) double counts[kMaxChunk];  // φ / count size (MilOWS)
+  alignas(64) double rounded_counts[kMaxChunk];  // round_half_away_in_lanes(counts)
 };
 
 // The chunk's per-pulse arithmetic over arrays: time (when time_from_index), mirror β, the
@@ -71,6 +74,7 @@ OWSIM_AVX2_CLONE void chunk_arithmetic(const LineChunk& line, ChunkArrays& out) 
     for (int i = 0; i < n; ++i) {
       out.counts[i] = motor_angle_deg(out.mirror_beta[i]) / kEncoderDegPerCount;
     }
+    for (int i = 0; i < n; ++i) out.rounded_counts[i] = round_half_away_in_lanes(out.counts[i]);
   }
   for (int c = 0; c < 3; ++c) {
     const double u0 = line.u[0][c], u1 = line.u[1][c], u2 = line.u[2][c];
@@ -172,6 +176,7 @@ void FrameRayBuilder::build_lines(const FrameSweep& sweep, const PoseSource& pos
   const double* const time_s = arrays.time_s;
   const double* const mirror_beta = arrays.mirror_beta;
   const double* const counts = arrays.counts;
+  const double* const rounded_counts = arrays.rounded_counts;
 
   // A line's rays: dir(s) = R(s) · (a·u + b·v + sin α·e_y) with R(s) = R0 + s·R1 + s²·R2, so
   // dir(s) = a·U(s) + b·V(s) + sin α·W(s), U(s) = R(s)·u and so on: per line, the nine vectors
@@ -242,7 +247,13 @@ void FrameRayBuilder::build_lines(const FrameSweep& sweep, const PoseSource& pos
         pulse.alpha_deg = slot.alpha_deg;
         pulse.mirror_beta_deg = mirror_beta[i];
         pulse.beta_deg = mirror_beta[i] + slot.sawtooth_deg;
-        pulse.encoder = milows ? encoder_word(counts[i]) : 0;
+        // encoder_word's word: through int32 from the rounding on lanes for every count of the
+        // mirror's ±30° (|counts| < 2³⁰), by encoder_word itself beyond.
+        pulse.encoder =
+            !milows ? EncoderCount{0}
+            : std::abs(counts[i]) < 0x1p30
+                ? static_cast<EncoderCount>(static_cast<std::int32_t>(rounded_counts[i]))
+                : encoder_word(counts[i]);
         pulse.frame_gate = k == frame_pulses - 1;
         pulse.line_gate = index == fibers - 1;
         pulse.mov_dir = mov_dir;

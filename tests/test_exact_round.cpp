@@ -1,5 +1,5 @@
-// Protects round_half_away and round_down (geometry/exact_round.hpp): they must equal std::round
-// and std::floor bit for bit on the halves and their neighbours, zeros, the 2⁵² edge, inf, NaN and
+// Protects round_half_away, round_half_away_in_lanes (below 2⁵²) and round_down
+// (geometry/exact_round.hpp): they must equal std::round and std::floor bit for bit on the halves and their neighbours, zeros, the 2⁵² edge, inf, NaN and
 // a million random doubles.
 #include <gtest/gtest.h>
 
@@ -28,6 +28,7 @@ void expect_same_bits(double got, double want, double x) {
 void expect_same_as_std(double x) {
   expect_same_bits(round_half_away(x), std::round(x), x);
   expect_same_bits(round_down(x), std::floor(x), x);
+  if (std::abs(x) < 0x1p52) expect_same_bits(round_half_away_in_lanes(x), std::round(x), x);
 }
 
 TEST(ExactRound, HalvesRoundAwayFromZero) {
@@ -84,6 +85,7 @@ TEST(ExactRound, RandomDoublesEqualStdRoundAndFloor) {
   for (int i = 0; i < 1000000; ++i) {
     const double x = std::ldexp(mantissa(random), exponent(random));
     if (bits(round_half_away(x)) != bits(std::round(x)) ||
+        (std::abs(x) < 0x1p52 && bits(round_half_away_in_lanes(x)) != bits(std::round(x))) ||
         bits(round_down(x)) != bits(std::floor(x))) {
       ADD_FAILURE() << std::hexfloat << x << ": " << round_half_away(x) << " " << round_down(x);
       return;
