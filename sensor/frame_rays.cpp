@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <numbers>
 
 #include "geometry/error.hpp"
@@ -247,13 +246,7 @@ void FrameRayBuilder::build_lines(const FrameSweep& sweep, const PoseSource& pos
         pulse.alpha_deg = slot.alpha_deg;
         pulse.mirror_beta_deg = mirror_beta[i];
         pulse.beta_deg = mirror_beta[i] + slot.sawtooth_deg;
-        // encoder_word's word: through int32 from the rounding on lanes for every count of the
-        // mirror's ±30° (|counts| < 2³⁰), by encoder_word itself beyond.
-        pulse.encoder =
-            !milows ? EncoderCount{0}
-            : std::abs(counts[i]) < 0x1p30
-                ? static_cast<EncoderCount>(static_cast<std::int32_t>(rounded_counts[i]))
-                : encoder_word(counts[i]);
+        pulse.encoder = milows ? encoder_word(counts[i], rounded_counts[i]) : 0;
         pulse.frame_gate = k == frame_pulses - 1;
         pulse.line_gate = index == fibers - 1;
         pulse.mov_dir = mov_dir;

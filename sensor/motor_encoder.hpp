@@ -49,6 +49,13 @@ inline constexpr std::array<double, 11> kMotorPolynomial = {
   if (!(std::abs(nearest) < 0x1p63)) return 0;
   return static_cast<EncoderCount>(static_cast<std::int64_t>(nearest));
 }
+// encoder_word(counts) from the rounding a loop over an array made on vector lanes,
+// `rounded` = round_half_away_in_lanes(counts): through int32 for every count of the mirror's
+// ±30° (|counts| < 2³⁰), by encoder_word itself beyond.
+[[nodiscard]] inline EncoderCount encoder_word(double counts, double rounded) {
+  if (!(std::abs(counts) < 0x1p30)) return encoder_word(counts);
+  return static_cast<EncoderCount>(static_cast<std::int32_t>(rounded));
+}
 // Encoder word value round(φ / 0.0054931640625°) as int16  (SENSOR-SPEC §3, eq 4.7)
 [[nodiscard]] inline EncoderCount encoder_count(double motor_angle_deg) {
   return encoder_word(motor_angle_deg / kEncoderDegPerCount);

@@ -1,6 +1,6 @@
 // Protects round_half_away, round_half_away_in_lanes (below 2⁵²) and round_down
-// (geometry/exact_round.hpp): they must equal std::round and std::floor bit for bit on the halves and their neighbours, zeros, the 2⁵² edge, inf, NaN and
-// a million random doubles.
+// (geometry/exact_round.hpp): they must equal std::round and std::floor bit for bit on the halves
+// and their neighbours, zeros, the 2⁵² edge, inf, NaN and a million random doubles.
 #include <gtest/gtest.h>
 
 #include <bit>
