@@ -75,7 +75,10 @@ struct PulseRay {
 
 // The candidates one pulse collects while it is traced: at most kMaxWires conductors (the
 // strongest kept when more are met) and the nearest solid hit. Fixed size: no allocation.
-class PulseCandidates {
+// Cache-line aligned with the solid hit, its background and the counts first: the trace's
+// clear and set_solid and the receiver's sorting of a pulse touch that one line, and the wires'
+// lines only when the pulse met a wire.
+class alignas(64) PulseCandidates {
  public:
   static constexpr int kMaxWires = 8;
 
@@ -109,11 +112,11 @@ class PulseCandidates {
   std::span<Candidate> gather(std::span<Candidate> out) const;
 
  private:
-  std::array<Candidate, kMaxWires> wires_{};
-  int wire_count_ = 0;
   Candidate solid_{};
   double solid_background_ = 0.0;
+  int wire_count_ = 0;
   bool has_solid_ = false;
+  std::array<Candidate, kMaxWires> wires_{};
 };
 
 }  // namespace owsim
