@@ -21,7 +21,10 @@ std::filesystem::path sibling(const std::filesystem::path& folder, const char* s
   static thread_local std::mt19937 random{std::random_device{}()};
   char digits[9];
   std::snprintf(digits, sizeof digits, "%08x", static_cast<unsigned>(random()));
-  return folder.parent_path() / ("." + folder.filename().string() + "." + digits + suffix);
+  // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on "." + string&&.
+  std::string name = ".";
+  name.append(folder.filename().string()).append(".").append(digits).append(suffix);
+  return folder.parent_path() / name;
 }
 
 std::string why() { return std::strerror(errno); }

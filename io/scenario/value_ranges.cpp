@@ -133,10 +133,12 @@ const ValueRange* value_range_of(std::string_view key_path) {
 std::string out_of_range_problem(std::string_view key_path, double value) {
   const ValueRange* range = value_range_of(key_path);
   if (range == nullptr || (value >= range->min && value <= range->max)) return {};
-  std::string problem =
-      "must be in [" + range_number_text(range->min) + ", " + range_number_text(range->max) + "]";
-  if (!range->unit.empty()) problem += " " + std::string(range->unit);
-  return problem + ", got " + range_number_text(value);
+  // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on "literal" + string&&.
+  std::string problem = "must be in [";
+  problem.append(range_number_text(range->min)).append(", ");
+  problem.append(range_number_text(range->max)).append("]");
+  if (!range->unit.empty()) problem.append(" ").append(range->unit);
+  return problem.append(", got ").append(range_number_text(value));
 }
 
 }  // namespace owsim
