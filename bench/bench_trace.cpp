@@ -17,9 +17,10 @@
 namespace owsim {
 namespace {
 
-constexpr std::array<TraceApi, 3> kApis = {TraceApi::per_ray, TraceApi::stream, TraceApi::packet8};
+constexpr std::array<TraceApi, 4> kApis = {TraceApi::per_ray, TraceApi::stream, TraceApi::packet8,
+                                           TraceApi::packet16};
 
-// Args: query form (0 per_ray, 1 stream, 2 packet8), threads (0 = every core).
+// Args: query form (0 per_ray, 1 stream, 2 packet8, 3 packet16), threads (0 = every core).
 void BM_TraceFrame(benchmark::State& state) {
   const bench::BenchFixture& f = bench::bench_fixture();
   const TraceApi api = kApis[static_cast<std::size_t>(state.range(0))];
@@ -37,7 +38,7 @@ void BM_TraceFrame(benchmark::State& state) {
   state.counters["threads"] = threads;
 }
 BENCHMARK(BM_TraceFrame)
-    ->ArgsProduct({{0, 1, 2}, {1, 0}})
+    ->ArgsProduct({{0, 1, 2, 3}, {1, 0}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

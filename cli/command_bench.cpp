@@ -36,7 +36,8 @@ nlohmann::ordered_json to_json(const ThroughputReport& report) {
           {"trace_api_pulses_per_s",
            {{"per_ray", report.trace_pulses_per_s[0]},
             {"stream", report.trace_pulses_per_s[1]},
-            {"packet8", report.trace_pulses_per_s[2]}}},
+            {"packet8", report.trace_pulses_per_s[2]},
+            {"packet16", report.trace_pulses_per_s[3]}}},
           {"brute_force_subset_pulses", report.brute_force_pulses},
           {"repeats", report.repeats}};
 }
@@ -54,9 +55,9 @@ void print_text(const ThroughputReport& r) {
       r.end_to_end_over_trace_paired);
   fmt::print(
       "  trace-only     {:>12.0f} pulses/s  {} won (per_ray {:.0f}, stream {:.0f}, "
-      "packet8 {:.0f})\n",
+      "packet8 {:.0f}, packet16 {:.0f})\n",
       r.trace_only_pulses_per_s, to_string(r.trace_api), r.trace_pulses_per_s[0],
-      r.trace_pulses_per_s[1], r.trace_pulses_per_s[2]);
+      r.trace_pulses_per_s[1], r.trace_pulses_per_s[2], r.trace_pulses_per_s[3]);
   fmt::print(
       "  traversal-only {:>12.0f} pulses/s  Embree's traversal alone (callbacks reduced to "
       "recording the hit): {:.2f} of end-to-end's time, paired by round (median)\n",

@@ -27,8 +27,8 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-constexpr std::array<TraceApi, 3> kTraceApis = {TraceApi::per_ray, TraceApi::stream,
-                                                TraceApi::packet8};
+constexpr std::array<TraceApi, 4> kTraceApis = {TraceApi::per_ray, TraceApi::stream,
+                                                TraceApi::packet8, TraceApi::packet16};
 
 template <typename Work>
 double seconds_of(Work&& work) {

@@ -58,7 +58,7 @@ struct ThroughputReport {
   double peak_rss_mb = 0.0;
   // Not in INTERFACE.md's list, reported beside it:
   std::uint64_t brute_force_pulses = 0;      // the subset actually traced
-  double trace_pulses_per_s[3] = {0, 0, 0};  // by TraceApi (per_ray, stream, packet8)
+  double trace_pulses_per_s[4] = {0, 0, 0, 0};  // by TraceApi (per_ray, stream, packet8, 16)
   int repeats = 0;
   double prf_hz = 0.0;
   // truth_pulses_per_s over end_to_end_pulses_per_s as each round's two back-to-back runs give

@@ -93,48 +93,42 @@ void record_solid(const EmbreeScene& scene, const ReceiverNoise& noise, const Pu
   if (scene.is_terrain(geom_id)) set_ground(scene.terrain_hit(solid, ray));
 }
 
-// A block's rays in the form its Embree query takes them: RTCRayHit records (per ray, stream) or
-// 8-ray packets (packet8), each ray written once in float and, between the two passes, only given
-// a new tfar and cleared of its hit (Embree changes nothing else of a ray).
-class BlockRays {
- public:
-  explicit BlockRays(TraceApi api) : api_(api) {}
-
-  // Ray i of the block: the pulse's ray as floats, from 0 to tfar, no hit.
-  void set(unsigned i, const PulseRay& pulse, unsigned id, float tfar) {
-    traced_[i] = 1;
-    if (api_ != TraceApi::packet8) {
-      set_ray(rayhits_[i].ray, pulse, id, tfar);
-      clear_hit(rayhits_[i].hit);
-      return;
-    }
-    RTCRayHit8& packet = packets_[i / 8];
-    const unsigned lane = i % 8;
-    packet.ray.org_x[lane] = static_cast<float>(pulse.origin_enu_m.x());
-    packet.ray.org_y[lane] = static_cast<float>(pulse.origin_enu_m.y());
-    packet.ray.org_z[lane] = static_cast<float>(pulse.origin_enu_m.z());
-    packet.ray.dir_x[lane] = static_cast<float>(pulse.dir_enu.x());
-    packet.ray.dir_y[lane] = static_cast<float>(pulse.dir_enu.y());
-    packet.ray.dir_z[lane] = static_cast<float>(pulse.dir_enu.z());
-    packet.ray.tnear[lane] = 0.0f;
-    packet.ray.tfar[lane] = tfar;
-    packet.ray.time[lane] = 0.0f;
-    packet.ray.mask[lane] = 0xFFFFFFFFu;  // Debian's Embree is built with ray masks
-    packet.ray.id[lane] = id;
-    packet.ray.flags[lane] = 0;
-    packet.hit.geomID[lane] = kNoHit;
-    packet.hit.instID[0][lane] = kNoHit;
+// An Embree ray packet of W rays and its query.
+template <unsigned W>
+struct Packet;
+template <>
+struct Packet<8> {
+  using RayHit = RTCRayHit8;
+  static void intersect(const int* valid, RTCScene scene, RTCIntersectContext* context,
+                        RayHit* packet) {
+    rtcIntersect8(valid, scene, context, packet);
   }
-  // Rays [0, n) of the block in 8-ray packets (packet8 only), as set() writes each: ray i from
-  // the block's arrays (its pulse's doubles), with id ids[i], from 0 to tfar[i], no hit. The
-  // lanes of the last packet past n repeat its first ray (Embree skips them: they are not
-  // valid); the arrays, ids and tfar are padded so. Field by field over whole packets, on vector
-  // lanes.
-  void set_packets(RayArrays& arrays, std::array<unsigned, FrameTracer::kChunk>& ids,
-                   std::array<float, FrameTracer::kChunk>& tfar, unsigned n) {
-    const unsigned padded = (n + 7) / 8 * 8;
+};
+template <>
+struct Packet<16> {
+  using RayHit = RTCRayHit16;
+  static void intersect(const int* valid, RTCScene scene, RTCIntersectContext* context,
+                        RayHit* packet) {
+    rtcIntersect16(valid, scene, context, packet);
+  }
+};
+
+// The packets of a block's rays, W rays each.
+template <unsigned W>
+class BlockPackets {
+ public:
+  static_assert(FrameTracer::kChunk % W == 0);
+  using RayHit = typename Packet<W>::RayHit;
+
+  // Rays [0, n) in packets: ray i from the block's arrays (its pulse's doubles), with id ids[i],
+  // from 0 to tfar[i], no hit. The lanes of the last packet past n repeat its first ray (Embree
+  // skips them: they are not valid); the arrays, ids and tfar are padded so. Field by field over
+  // whole packets, on vector lanes.
+  void set(RayArrays& arrays, std::array<unsigned, FrameTracer::kChunk>& ids,
+           std::array<float, FrameTracer::kChunk>& tfar, unsigned n) {
+    const unsigned padded = (n + W - 1) / W * W;
     for (unsigned i = n; i < padded; ++i) {
-      const unsigned first = i - i % 8;
+      const unsigned first = i - i % W;
       for (int axis = 0; axis < 3; ++axis) {
         arrays.origin[axis][i] = arrays.origin[axis][first];
         arrays.dir[axis][i] = arrays.dir[axis][first];
@@ -142,11 +136,10 @@ class BlockRays {
       ids[i] = ids[first];
       tfar[i] = tfar[first];
     }
-    std::fill_n(traced_.begin(), padded, std::uint8_t{1});
-    for (unsigned p = 0; p < padded / 8; ++p) {
-      RTCRayHit8& packet = packets_[p];
-      const unsigned at = p * 8;
-      for (unsigned lane = 0; lane < 8; ++lane) {
+    for (unsigned p = 0; p < padded / W; ++p) {
+      RayHit& packet = packets_[p];
+      const unsigned at = p * W;
+      for (unsigned lane = 0; lane < W; ++lane) {
         packet.ray.org_x[lane] = static_cast<float>(arrays.origin[0][at + lane]);
         packet.ray.org_y[lane] = static_cast<float>(arrays.origin[1][at + lane]);
         packet.ray.org_z[lane] = static_cast<float>(arrays.origin[2][at + lane]);
@@ -164,55 +157,115 @@ class BlockRays {
       }
     }
   }
-  // Ray i again from 0 to tfar, its hit cleared; `traced` false leaves it out of the next query.
-  void restart(unsigned i, float tfar, bool traced) {
-    traced_[i] = traced ? 1 : 0;
-    if (api_ != TraceApi::packet8) {
-      rayhits_[i].ray.tfar = tfar;
-      // A stream leaves out a ray whose tnear lies beyond its tfar.
-      rayhits_[i].ray.tnear = traced ? 0.0f : std::numeric_limits<float>::infinity();
-      clear_hit(rayhits_[i].hit);
-      return;
-    }
-    RTCRayHit8& packet = packets_[i / 8];
-    packet.ray.tfar[i % 8] = tfar;
-    packet.hit.geomID[i % 8] = kNoHit;
-    packet.hit.instID[0][i % 8] = kNoHit;
+  // Ray i from 0 to tfar again, its hit cleared.
+  void restart(unsigned i, float tfar) {
+    RayHit& packet = packets_[i / W];
+    packet.ray.tfar[i % W] = tfar;
+    packet.hit.geomID[i % W] = kNoHit;
+    packet.hit.instID[0][i % W] = kNoHit;
   }
-  // restart(i, t_max[i], meets[i] != 0) for the rays [0, n) of packets (packet8 only), over
-  // whole packets where they are full.
-  void restart_packets(const double* t_max, const std::int64_t* meets, unsigned n) {
-    for (unsigned i = 0; i < n; ++i) traced_[i] = meets[i] != 0 ? 1 : 0;
-    for (unsigned at = 0; at < n; at += 8) {
-      RTCRayHit8& packet = packets_[at / 8];
-      if (at + 8 <= n) {
-        for (unsigned lane = 0; lane < 8; ++lane) {
+  // restart(i, t_max[i]) for the rays [0, n), over whole packets where they are full.
+  void restart(const double* t_max, unsigned n) {
+    for (unsigned at = 0; at < n; at += W) {
+      RayHit& packet = packets_[at / W];
+      if (at + W <= n) {
+        for (unsigned lane = 0; lane < W; ++lane) {
           packet.ray.tfar[lane] = static_cast<float>(t_max[at + lane]);
           packet.hit.geomID[lane] = kNoHit;
           packet.hit.instID[0][lane] = kNoHit;
         }
         continue;
       }
-      for (unsigned lane = 0; at + lane < n; ++lane) {
-        packet.ray.tfar[lane] = static_cast<float>(t_max[at + lane]);
-        packet.hit.geomID[lane] = kNoHit;
-        packet.hit.instID[0][lane] = kNoHit;
+      for (unsigned lane = 0; at + lane < n; ++lane)
+        restart(at + lane, static_cast<float>(t_max[at + lane]));
+    }
+  }
+  [[nodiscard]] float tfar(unsigned i) const { return packets_[i / W].ray.tfar[i % W]; }
+  [[nodiscard]] RTCHit hit(unsigned i) const {
+    const auto& packet = packets_[i / W].hit;
+    RTCHit hit{};
+    hit.geomID = packet.geomID[i % W];
+    hit.primID = packet.primID[i % W];
+    hit.u = packet.u[i % W];
+    hit.v = packet.v[i % W];
+    return hit;
+  }
+  // One query per packet that holds a traced ray of [0, n); the others are not handed to Embree.
+  void intersect(RTCScene scene, TraceContext& context, const std::uint8_t* traced, unsigned n) {
+    context.rtc.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    for (unsigned first = 0; first < n; first += W) {
+      alignas(64) int valid[W];
+      int any = 0;
+      for (unsigned lane = 0; lane < W; ++lane) {
+        valid[lane] = first + lane < n && traced[first + lane] != 0 ? -1 : 0;
+        any |= valid[lane];
       }
+      if (any != 0) Packet<W>::intersect(valid, scene, &context.rtc, &packets_[first / W]);
+    }
+  }
+
+ private:
+  std::array<RayHit, FrameTracer::kChunk / W> packets_;
+};
+
+// A block's rays in the form its Embree query takes them: RTCRayHit records (per ray, stream) or
+// ray packets (packet8, packet16), each ray written once in float and, between the two passes,
+// only given a new tfar and cleared of its hit (Embree changes nothing else of a ray).
+class BlockRays {
+ public:
+  explicit BlockRays(TraceApi api) : api_(api) {}
+
+  [[nodiscard]] bool in_packets() const {
+    return api_ == TraceApi::packet8 || api_ == TraceApi::packet16;
+  }
+  // Ray i of the block (per ray and stream only): the pulse's ray as floats, from 0 to tfar, no
+  // hit.
+  void set(unsigned i, const PulseRay& pulse, unsigned id, float tfar) {
+    traced_[i] = 1;
+    set_ray(rayhits_[i].ray, pulse, id, tfar);
+    clear_hit(rayhits_[i].hit);
+  }
+  // Rays [0, n) of the block in packets (packet8, packet16 only), as BlockPackets::set writes
+  // them (the arrays, ids and tfar padded to whole packets).
+  void set_packets(RayArrays& arrays, std::array<unsigned, FrameTracer::kChunk>& ids,
+                   std::array<float, FrameTracer::kChunk>& tfar, unsigned n) {
+    std::fill_n(traced_.begin(), FrameTracer::kChunk, std::uint8_t{1});
+    if (api_ == TraceApi::packet16) {
+      packets16_.set(arrays, ids, tfar, n);
+    } else {
+      packets8_.set(arrays, ids, tfar, n);
+    }
+  }
+  // Ray i again from 0 to tfar, its hit cleared; `traced` false leaves it out of the next query.
+  void restart(unsigned i, float tfar, bool traced) {
+    traced_[i] = traced ? 1 : 0;
+    if (api_ == TraceApi::packet16) return packets16_.restart(i, tfar);
+    if (api_ == TraceApi::packet8) return packets8_.restart(i, tfar);
+    rayhits_[i].ray.tfar = tfar;
+    // A stream leaves out a ray whose tnear lies beyond its tfar.
+    rayhits_[i].ray.tnear = traced ? 0.0f : std::numeric_limits<float>::infinity();
+    clear_hit(rayhits_[i].hit);
+  }
+  // restart(i, t_max[i], meets[i] != 0) for the rays [0, n) of packets (packet8, packet16 only),
+  // over whole packets where they are full.
+  void restart_packets(const double* t_max, const std::int64_t* meets, unsigned n) {
+    for (unsigned i = 0; i < n; ++i) traced_[i] = meets[i] != 0 ? 1 : 0;
+    if (api_ == TraceApi::packet16) {
+      packets16_.restart(t_max, n);
+    } else {
+      packets8_.restart(t_max, n);
     }
   }
   [[nodiscard]] float tfar(unsigned i) const {
-    return api_ == TraceApi::packet8 ? packets_[i / 8].ray.tfar[i % 8] : rayhits_[i].ray.tfar;
+    if (api_ == TraceApi::packet16) return packets16_.tfar(i);
+    if (api_ == TraceApi::packet8) return packets8_.tfar(i);
+    return rayhits_[i].ray.tfar;
   }
   // What record_solid reads of ray i's hit: geometry, primitive, u, v.
   [[nodiscard]] RTCHit hit(unsigned i) const {
-    if (api_ != TraceApi::packet8) return rayhits_[i].hit;
-    const RTCHit8& packet = packets_[i / 8].hit;
-    RTCHit hit{};
-    hit.geomID = packet.geomID[i % 8];
-    hit.primID = packet.primID[i % 8];
-    hit.u = packet.u[i % 8];
-    hit.v = packet.v[i % 8];
-    return hit;
+    if (api_ == TraceApi::packet16) return packets16_.hit(i);
+    if (api_ == TraceApi::packet8) return packets8_.hit(i);
+    return rayhits_[i].hit;
   }
 
   // One Embree query over the traced rays of [0, n), in the chosen form; a packet without one
@@ -229,16 +282,10 @@ class BlockRays {
         rtcIntersect1M(scene, &context.rtc, rayhits_.data(), n, sizeof(RTCRayHit));
         break;
       case TraceApi::packet8:
-        context.rtc.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-        for (unsigned first = 0; first < n; first += 8) {
-          alignas(32) int valid[8];
-          int any = 0;
-          for (unsigned lane = 0; lane < 8; ++lane) {
-            valid[lane] = first + lane < n && traced_[first + lane] != 0 ? -1 : 0;
-            any |= valid[lane];
-          }
-          if (any != 0) rtcIntersect8(valid, scene, &context.rtc, &packets_[first / 8]);
-        }
+        packets8_.intersect(scene, context, traced_.data(), n);
+        break;
+      case TraceApi::packet16:
+        packets16_.intersect(scene, context, traced_.data(), n);
         break;
     }
   }
@@ -252,7 +299,8 @@ class BlockRays {
   TraceApi api_;
   std::array<std::uint8_t, FrameTracer::kChunk> traced_{};
   std::array<RTCRayHit, FrameTracer::kChunk> rayhits_;
-  std::array<RTCRayHit8, FrameTracer::kChunk / 8> packets_;
+  BlockPackets<8> packets8_;
+  BlockPackets<16> packets16_;
 };
 
 }  // namespace
@@ -265,8 +313,16 @@ std::string_view to_string(TraceApi api) {
       return "stream";
     case TraceApi::packet8:
       return "packet8";
+    case TraceApi::packet16:
+      return "packet16";
   }
   return "per_ray";
+}
+
+TraceApi widest_native_packet(const EmbreeDevice& device) {
+  return rtcGetDeviceProperty(device.get(), RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED) != 0
+             ? TraceApi::packet16
+             : TraceApi::packet8;
 }
 
 void FrameTracer::trace(std::span<const PulseRay> rays, std::span<const std::uint8_t> active,
@@ -308,7 +364,7 @@ void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const st
   std::array<std::int64_t, kChunk> meets_wires;
   const auto trace_wires = [&](TraceContext& context, unsigned n) {
     rays_meet_box(scene_->wire_bounds(), arrays, n, meets_wires.data());
-    if (api_ == TraceApi::packet8) {
+    if (block_rays.in_packets()) {
       block_rays.restart_packets(arrays.t_max, meets_wires.data(), n);
     } else {
       for (unsigned i = 0; i < n; ++i) {
@@ -353,7 +409,7 @@ void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const st
       search_to[i] =
           std::isnan(ground_m[i]) ? tfar : std::min(tfar, EmbreeScene::search_end(ground_m[i]));
     }
-    if (api_ == TraceApi::packet8) {
+    if (block_rays.in_packets()) {
       block_rays.set_packets(arrays, ids, search_to, n);
     } else {
       for (unsigned i = 0; i < n; ++i) block_rays.set(i, rays[ids[i]], ids[i], search_to[i]);

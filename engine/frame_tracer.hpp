@@ -18,12 +18,17 @@
 namespace owsim {
 
 enum class TraceApi {
-  per_ray,  // rtcIntersect1 for each ray
-  stream,   // rtcIntersect1M over the chunk (coherent flag set)
-  packet8,  // rtcIntersect8 over groups of 8 rays
+  per_ray,   // rtcIntersect1 for each ray
+  stream,    // rtcIntersect1M over the chunk (coherent flag set)
+  packet8,   // rtcIntersect8 over groups of 8 rays
+  packet16,  // rtcIntersect16 over groups of 16 rays
 };
 
 [[nodiscard]] std::string_view to_string(TraceApi api);
+
+// The widest packet the device traces natively: packet16 where Embree runs on AVX-512, else
+// packet8 (Embree would split a 16-ray packet for narrower lanes).
+[[nodiscard]] TraceApi widest_native_packet(const EmbreeDevice& device);
 
 // What the tracer does with Embree's hits. `traversal_only` is a yardstick (`owsim bench`): the
 // same two queries against the same BVHs, the callbacks reduced to recording the hit — the

@@ -193,7 +193,7 @@ FlightSetup::FlightSetup(Scenario scenario_in, const SimulationOptions& options)
                    timeout_range_m(scenario.receiver.counter)),
       simulator(
           FrameSimulatorParams{scenario.scan, scenario.receiver, scenario.mount, scenario.seed},
-          embree_scene, options.trace_api) {}
+          embree_scene, options.trace_api.value_or(widest_native_packet(device))) {}
 
 const FrameTruthModel& FlightSetup::truth_model() const {
   std::call_once(truth_built_, [&] {

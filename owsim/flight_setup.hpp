@@ -33,10 +33,12 @@ struct SimulationOptions {
   // own trajectory. The terrain is built over it too (widened by the counter's timeout range);
   // poses outside both are refused.
   std::optional<Eigen::AlignedBox2d> flight_area_enu_m;
-  // Embree's query form (the same bytes in every form). 8-ray packets: `owsim bench`'s winner of
-  // trace-only, and whole `owsim run` processes on two threads, 15 alternating against the stream:
-  // real corridor 0.433 -> 0.411 s, flat wires 0.144 -> 0.141 s, corridor 0.253 -> 0.251 s.
-  TraceApi trace_api = TraceApi::packet8;
+  // Embree's query form (the same bytes in every form); unset, the widest packet the device
+  // traces natively (widest_native_packet): 16 rays on AVX-512, whole `owsim run` processes on
+  // two threads 15 alternating against 8: corridor 0.966, flat wires 0.981, real corridor 0.982
+  // (one thread, corridor: 0.934). 8-ray packets against the stream, before: real corridor
+  // 0.433 -> 0.411 s, flat wires 0.144 -> 0.141 s, corridor 0.253 -> 0.251 s.
+  std::optional<TraceApi> trace_api;
 };
 
 // Not copyable or movable: the Embree scene and the simulator point into it.

@@ -77,12 +77,12 @@ TEST(CliBench, JsonHoldsEveryFieldConsistently) {
               report.at("end_to_end_pulses_per_s").get<double>() / 61'111.0,
               1e-9 * report.at("realtime_factor").get<double>());
 
-  // The winning query form is one of the three, and it is the fastest of them.
+  // The winning query form is one of the four, and it is the fastest of them.
   ASSERT_TRUE(report.at("trace_api").is_string());
   const std::string api = report.at("trace_api");
   const nlohmann::json& by_api = report.at("trace_api_pulses_per_s");
   ASSERT_TRUE(by_api.contains(api)) << api;
-  for (const char* form : {"per_ray", "stream", "packet8"}) {
+  for (const char* form : {"per_ray", "stream", "packet8", "packet16"}) {
     ASSERT_TRUE(by_api.at(form).is_number()) << form;
     EXPECT_GT(by_api.at(form).get<double>(), 0.0) << form;
     EXPECT_LE(by_api.at(form).get<double>(), by_api.at(api).get<double>()) << form;

@@ -21,7 +21,8 @@
 namespace owsim {
 namespace {
 
-constexpr TraceApi kApis[3] = {TraceApi::per_ray, TraceApi::stream, TraceApi::packet8};
+constexpr TraceApi kApis[4] = {TraceApi::per_ray, TraceApi::stream, TraceApi::packet8,
+                               TraceApi::packet16};
 
 const Eigen::AlignedBox2d kRegion(Eigen::Vector2d(-2000.0, -2000.0),
                                   Eigen::Vector2d(2000.0, 2000.0));

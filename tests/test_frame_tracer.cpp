@@ -31,7 +31,8 @@
 namespace owsim {
 namespace {
 
-constexpr TraceApi kApis[3] = {TraceApi::per_ray, TraceApi::stream, TraceApi::packet8};
+constexpr TraceApi kApis[4] = {TraceApi::per_ray, TraceApi::stream, TraceApi::packet8,
+                               TraceApi::packet16};
 constexpr double kRangeTolerance_m = 1e-3;
 constexpr double kEnergyTolerance = 1e-9;
 // Under AddressSanitizer (scripts/sanitize.sh) the brute force runs 10–20× slower than in
