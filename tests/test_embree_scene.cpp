@@ -150,6 +150,18 @@ TEST(EmbreeScene, RejectsBadInput) {
   EXPECT_NO_THROW(EmbreeDevice("threads=1").check("a fresh device"));
 }
 
+// 16-ray packets only where Embree runs them on 16 lanes: a device held to AVX2 (or less, on a
+// machine without it) traces 8-ray packets, since it would split the 16 into two.
+TEST(EmbreeScene, TheWidestNativePacketFollowsTheDevicesLanes) {
+  EXPECT_EQ(widest_native_packet(EmbreeDevice("isa=avx2")), TraceApi::packet8);
+  EXPECT_EQ(widest_native_packet(EmbreeDevice("isa=sse4.2")), TraceApi::packet8);
+  const EmbreeDevice device;
+  const bool avx512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512cd") &&
+                      __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw") &&
+                      __builtin_cpu_supports("avx512dq");
+  EXPECT_EQ(widest_native_packet(device), avx512 ? TraceApi::packet16 : TraceApi::packet8);
+}
+
 TEST(EmbreeScene, TerrainMeshIsTheRegionsMesh) {
   test::Rng rng(5);
   Scene objects;
@@ -257,7 +269,8 @@ TEST(EmbreeScene, WiresJustInFrontOfTheSolidAreFound) {
                                  test::uniform(rng, -1500.0, 1500.0), 60.0);
     const double ground_range = 60.0 / std::sin(depression);
     // Mostly within a few float steps of the ground, a few clearly behind it.
-    const double gap = k % 10 == 0 ? -test::uniform(rng, 0.0, 3e-4) : test::uniform(rng, 1e-6, 3e-4);
+    const double gap =
+        k % 10 == 0 ? -test::uniform(rng, 0.0, 3e-4) : test::uniform(rng, 1e-6, 3e-4);
     const Eigen::Vector3d crossing = origin + (ground_range - gap) * dir;
     const Eigen::Vector3d across(std::cos(azimuth), -std::sin(azimuth), 0.0);
     objects.conductors.push_back(
