@@ -31,9 +31,9 @@ namespace {
 // division: a multiply-add pipeline over the block. The answers are int64s so that every array
 // of the loop has the lanes of a double: a byte array made GCC take 32 rays an iteration and
 // spill most of them to the stack.
-OWSIM_AVX2_CLONE void meet_box(const double (&centre)[3], const double (&half)[3],
-                               const RayArrays& rays, std::size_t n,
-                               std::int64_t* __restrict meets) {
+OWSIM_VECTOR_CLONES void meet_box(const double (&centre)[3], const double (&half)[3],
+                                  const RayArrays& rays, std::size_t n,
+                                  std::int64_t* __restrict meets) {
   for (std::size_t i = 0; i < n; ++i) {
     double h[3], m[3];
     bool apart = false;

@@ -19,10 +19,10 @@ namespace {
 // (a0·b0 + a1·b1) + a2·b2; "avx2" enables no FMA, so nothing is fused. The index is an int64 so
 // that every array of the loop has the lanes of a double: a byte array made GCC take 32 rays an
 // iteration and spill most of them to the stack.
-OWSIM_AVX2_CLONE void first_hits_of(const double (&v0)[3], const double (&e1)[3],
-                                    const double (&e2)[3], std::int64_t index,
-                                    const RayArrays& rays, std::size_t n, double* __restrict ranges,
-                                    std::int64_t* __restrict which) {
+OWSIM_VECTOR_CLONES void first_hits_of(const double (&v0)[3], const double (&e1)[3],
+                                       const double (&e2)[3], std::int64_t index,
+                                       const RayArrays& rays, std::size_t n,
+                                       double* __restrict ranges, std::int64_t* __restrict which) {
   constexpr double kMaxFinite = std::numeric_limits<double>::max();
   for (std::size_t i = 0; i < n; ++i) {
     const double d0 = rays.dir[0][i], d1 = rays.dir[1][i], d2 = rays.dir[2][i];

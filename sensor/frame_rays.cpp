@@ -51,14 +51,14 @@ struct ChunkArrays {
   alignas(64) double org[3][kMaxChunk];
   alignas(64) double time_s[kMaxChunk];
   alignas(64) double mirror_beta[kMaxChunk];
-  alignas(64) double counts[kMaxChunk];  // φ / count size (MilOWS)
+  alignas(64) double counts[kMaxChunk];          // φ / count size (MilOWS)
   alignas(64) double rounded_counts[kMaxChunk];  // round_half_away_in_lanes(counts)
 };
 
 // The chunk's per-pulse arithmetic over arrays: time (when time_from_index), mirror β, the
 // encoder's φ in counts, and the unit direction and origin of each ray (the reference slot's zero
 // vector becomes NaN here and is not stored).
-OWSIM_AVX2_CLONE void chunk_arithmetic(const LineChunk& line, ChunkArrays& out) {
+OWSIM_VECTOR_CLONES void chunk_arithmetic(const LineChunk& line, ChunkArrays& out) {
   const int n = line.n;
   if (line.time_from_index) {
     for (int i = 0; i < n; ++i) {

@@ -24,11 +24,11 @@ struct Constants {
 // every choice a select, so the loop has one lane width and no branch and GCC vectorises it; each
 // quantity is computed by the expression of the scalar path it stands for. The outcome is a
 // SingleReturnBatch::Outcome as a double.
-OWSIM_AVX2_CLONE void decide(const Constants& c, std::size_t n, const double* __restrict range_m,
-                             const double* __restrict energy_rel,
-                             const double* __restrict background, const double* __restrict normal,
-                             double* __restrict noisy_range_m, double* __restrict counts_out,
-                             double* __restrict outcome) {
+OWSIM_VECTOR_CLONES void decide(const Constants& c, std::size_t n, const double* __restrict range_m,
+                                const double* __restrict energy_rel,
+                                const double* __restrict background,
+                                const double* __restrict normal, double* __restrict noisy_range_m,
+                                double* __restrict counts_out, double* __restrict outcome) {
   constexpr double kLargest = std::numeric_limits<double>::max();
   const double noisy = c.noisy ? 1.0 : 0.0;
   const double threshold = c.threshold;

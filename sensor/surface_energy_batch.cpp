@@ -1,9 +1,9 @@
 #include "sensor/surface_energy_batch.hpp"
 
 #include "geometry/error.hpp"
+#include "geometry/vector_clones.hpp"
 #include "sensor/reflectivity.hpp"
 #include "sensor/return_energy.hpp"
-#include "geometry/vector_clones.hpp"
 
 namespace owsim {
 namespace {
@@ -11,14 +11,12 @@ namespace {
 // This file is compiled with -fno-trapping-math (CMakeLists.txt): GCC may then turn the angle's
 // and the reflectivity's choices into selects and run the loop on vector lanes. The values are the
 // same; only floating-point exception flags, which owsim never reads, could differ.
-OWSIM_AVX2_CLONE void evaluate_arrays(std::size_t n, const double* __restrict dx,
-                                      const double* __restrict dy, const double* __restrict dz,
-                                      const double* __restrict nx, const double* __restrict ny,
-                                      const double* __restrict nz,
-                                      const double* __restrict fraction,
-                                      const double* __restrict reflectivity,
-                                      const double* __restrict transmission,
-                                      double* __restrict incidence_deg, double* __restrict energy) {
+OWSIM_VECTOR_CLONES void evaluate_arrays(
+    std::size_t n, const double* __restrict dx, const double* __restrict dy,
+    const double* __restrict dz, const double* __restrict nx, const double* __restrict ny,
+    const double* __restrict nz, const double* __restrict fraction,
+    const double* __restrict reflectivity, const double* __restrict transmission,
+    double* __restrict incidence_deg, double* __restrict energy) {
   for (std::size_t i = 0; i < n; ++i) {
     const double theta = surface_incidence_deg(dx[i], dy[i], dz[i], nx[i], ny[i], nz[i]);
     incidence_deg[i] = theta;

@@ -16,8 +16,8 @@ namespace {
 // quotient by a power of two, its floor and the product are exact, and so is the difference, an
 // integer below 65536 — which is the int64 mask's value; `common` says |ticks| < 2⁶² held.
 constexpr std::size_t kTagBlock = 256;
-OWSIM_AVX2_CLONE void wrapped_milows_ticks(const double* times_s, std::size_t n, double* wrapped,
-                                           std::uint8_t* common) {
+OWSIM_VECTOR_CLONES void wrapped_milows_ticks(const double* times_s, std::size_t n, double* wrapped,
+                                              std::uint8_t* common) {
   constexpr double kTicksPerS = 1.0 / kMilowsTimeTagTickS;
   constexpr double kModulus = kMilowsTimeTagModulus;
   for (std::size_t i = 0; i < n; ++i) {
