@@ -235,8 +235,10 @@ void philox_lanes(std::size_t n, std::uint32_t* __restrict w0, std::uint32_t* __
 
 // GCC 12's AVX-512 shift intrinsics pass an undefined vector through and warn of it where they
 // are inlined (GCC bug 105593, fixed in 13): the warning is about the header, not this code.
+#if !defined(__clang__)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
 // mulhilo_8 on 16 lanes (AVX-512F).
 [[gnu::target("avx512f")]] inline void mulhilo_16(__m512i m, __m512i c, __m512i& hi, __m512i& lo) {
   const __m512i even = _mm512_mul_epu32(m, c);
@@ -277,7 +279,9 @@ void philox_lanes(std::size_t n, std::uint32_t* __restrict w0, std::uint32_t* __
   }
   philox_lanes_avx2(n - i, w0 + i, w1 + i, w2 + i, w3 + i, key0, key1);
 }
+#if !defined(__clang__)
 #pragma GCC diagnostic pop
+#endif
 #endif
 
 // philox_lanes on the CPU's widest lanes.
