@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <type_traits>
 
 #include "engine/flush_to_zero.hpp"
 #include "engine/trace_context.hpp"
@@ -93,23 +94,18 @@ void record_solid(const EmbreeScene& scene, const ReceiverNoise& noise, const Pu
   if (scene.is_terrain(geom_id)) set_ground(scene.terrain_hit(solid, ray));
 }
 
-// An Embree ray packet of W rays and its query.
+// An Embree ray packet of W rays (8 or 16) and its query.
 template <unsigned W>
-struct Packet;
-template <>
-struct Packet<8> {
-  using RayHit = RTCRayHit8;
+struct Packet {
+  static_assert(W == 8 || W == 16);
+  using RayHit = std::conditional_t<W == 8, RTCRayHit8, RTCRayHit16>;
   static void intersect(const int* valid, RTCScene scene, RTCIntersectContext* context,
                         RayHit* packet) {
-    rtcIntersect8(valid, scene, context, packet);
-  }
-};
-template <>
-struct Packet<16> {
-  using RayHit = RTCRayHit16;
-  static void intersect(const int* valid, RTCScene scene, RTCIntersectContext* context,
-                        RayHit* packet) {
-    rtcIntersect16(valid, scene, context, packet);
+    if constexpr (W == 8) {
+      rtcIntersect8(valid, scene, context, packet);
+    } else {
+      rtcIntersect16(valid, scene, context, packet);
+    }
   }
 };
 
