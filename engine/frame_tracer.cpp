@@ -119,9 +119,9 @@ class BlockPackets {
   // Rays [0, n) in packets: ray i from the block's arrays (its pulse's doubles), with id ids[i],
   // from 0 to tfar[i], no hit. The lanes of the last packet past n repeat its first ray (Embree
   // skips them: they are not valid); the arrays, ids and tfar are padded so. Field by field over
-  // whole packets, on vector lanes.
-  void set(RayArrays& arrays, std::array<unsigned, FrameTracer::kChunk>& ids,
-           std::array<float, FrameTracer::kChunk>& tfar, unsigned n) {
+  // whole packets, on vector lanes. Returns the padded count.
+  unsigned set(RayArrays& arrays, std::array<unsigned, FrameTracer::kChunk>& ids,
+               std::array<float, FrameTracer::kChunk>& tfar, unsigned n) {
     const unsigned padded = (n + W - 1) / W * W;
     for (unsigned i = n; i < padded; ++i) {
       const unsigned first = i - i % W;
@@ -152,6 +152,7 @@ class BlockPackets {
         packet.hit.instID[0][lane] = kNoHit;
       }
     }
+    return padded;
   }
   // Ray i from 0 to tfar again, its hit cleared.
   void restart(unsigned i, float tfar) {
@@ -225,18 +226,14 @@ class BlockRays {
   // them (the arrays, ids and tfar padded to whole packets).
   void set_packets(RayArrays& arrays, std::array<unsigned, FrameTracer::kChunk>& ids,
                    std::array<float, FrameTracer::kChunk>& tfar, unsigned n) {
-    std::fill_n(traced_.begin(), FrameTracer::kChunk, std::uint8_t{1});
-    if (api_ == TraceApi::packet16) {
-      packets16_.set(arrays, ids, tfar, n);
-    } else {
-      packets8_.set(arrays, ids, tfar, n);
-    }
+    const unsigned padded = api_ == TraceApi::packet16 ? packets16_.set(arrays, ids, tfar, n)
+                                                       : packets8_.set(arrays, ids, tfar, n);
+    std::fill_n(traced_.begin(), padded, std::uint8_t{1});
   }
-  // Ray i again from 0 to tfar, its hit cleared; `traced` false leaves it out of the next query.
+  // Ray i again from 0 to tfar, its hit cleared (per ray and stream only); `traced` false leaves
+  // it out of the next query.
   void restart(unsigned i, float tfar, bool traced) {
     traced_[i] = traced ? 1 : 0;
-    if (api_ == TraceApi::packet16) return packets16_.restart(i, tfar);
-    if (api_ == TraceApi::packet8) return packets8_.restart(i, tfar);
     rayhits_[i].ray.tfar = tfar;
     // A stream leaves out a ray whose tnear lies beyond its tfar.
     rayhits_[i].ray.tnear = traced ? 0.0f : std::numeric_limits<float>::infinity();
