@@ -384,8 +384,10 @@ void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const st
     std::array<float, kChunk> search_to;  // each ray's search end in the solids pass
     unsigned n = 0;
     for (unsigned id = block; id < block_end; ++id) {
-      candidates[id].clear();
-      if (active[id] == 0) continue;
+      if (active[id] == 0) {
+        candidates[id].clear();
+        continue;
+      }
       ids[n] = id;
       for (int axis = 0; axis < 3; ++axis) {
         arrays.origin[axis][n] = rays[id].origin_enu_m[axis];
@@ -419,12 +421,14 @@ void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const st
         arrays.t_max[i] = solid ? std::min(tfar, EmbreeScene::search_end(block_rays.tfar(i)))
                                 : block_rays.tfar(i);
       }
+      for (unsigned i = 0; i < n; ++i) candidates[ids[i]].clear();
       trace_wires(context, n);
       continue;
     }
     batch.clear();
     for (unsigned i = 0; i < n; ++i) {
       const unsigned id = ids[i];
+      candidates[id].clear();
       std::optional<TriangleHit> ground;
       if (!std::isnan(ground_m[i])) {
         ground = TriangleHit{ground_m[i], level_ground[ground_triangle[i]].normal};
