@@ -379,7 +379,8 @@ void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const st
     context.max_range_m = max_range;
     context.traversal_only = work_ == TraceWork::traversal_only;
 
-    // Gather the active rays of the block; inactive ones keep empty candidate lists.
+    // Gather the active rays of the block; inactive ones keep empty candidate lists. An active
+    // ray's record is cleared in the record loop below, where its first line is written anyway.
     std::array<unsigned, kChunk> ids;
     std::array<float, kChunk> search_to;  // each ray's search end in the solids pass
     unsigned n = 0;
