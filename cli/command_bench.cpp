@@ -25,6 +25,9 @@ nlohmann::ordered_json to_json(const ThroughputReport& report) {
           {"end_to_end_over_trace_paired", report.end_to_end_over_trace_paired},
           {"brute_force_pulses_per_s", report.brute_force_pulses_per_s},
           {"single_thread_pulses_per_s", report.single_thread_pulses_per_s},
+          {"traversal_share_single_thread_paired", report.traversal_share_single_thread_paired},
+          {"end_to_end_over_trace_single_thread_paired",
+           report.end_to_end_over_trace_single_thread_paired},
           {"las_pulses_per_s", report.las_pulses_per_s},
           {"points_pulses_per_s", report.points_pulses_per_s},
           {"truth_pulses_per_s", report.truth_pulses_per_s},
@@ -62,9 +65,12 @@ void print_text(const ThroughputReport& r) {
       "  traversal-only {:>12.0f} pulses/s  Embree's traversal alone (callbacks reduced to "
       "recording the hit): {:.2f} of end-to-end's time, paired by round (median)\n",
       r.traversal_only_pulses_per_s, r.traversal_share_paired);
-  fmt::print("  single thread  {:>12.0f} pulses/s  end-to-end on {} threads is {:.2f}x\n",
-             r.single_thread_pulses_per_s, r.threads,
-             ratio(r.end_to_end_pulses_per_s, r.single_thread_pulses_per_s));
+  fmt::print(
+      "  single thread  {:>12.0f} pulses/s  end-to-end on {} threads is {:.2f}x; on one thread, "
+      "traversal-only {:.2f} and trace-only {:.2f} of its time (paired by round, median)\n",
+      r.single_thread_pulses_per_s, r.threads,
+      ratio(r.end_to_end_pulses_per_s, r.single_thread_pulses_per_s),
+      r.traversal_share_single_thread_paired, r.end_to_end_over_trace_single_thread_paired);
   fmt::print("  points.las     {:>12.0f} pulses/s  {:.2f} of end-to-end (--outputs las)\n",
              r.las_pulses_per_s, ratio(r.las_pulses_per_s, r.end_to_end_pulses_per_s));
   fmt::print("  all points     {:>12.0f} pulses/s  {:.2f} of end-to-end (--outputs points)\n",

@@ -216,6 +216,8 @@ ThroughputReport measure_throughput(const ThroughputOptions& options) {
   std::vector<double> traversal_shares;  // per round: traversal-only's seconds over end-to-end's
   std::vector<double> trace_shares;      // per round: trace-only's seconds over end-to-end's
   std::vector<double> truth_ratios;      // per round: the words' seconds over words + truth's
+  std::vector<double> traversal_shares_1;  // the same two on one thread
+  std::vector<double> trace_shares_1;
   tbb::task_arena one_thread(1);
   for (int round = 1; round <= options.repeats; ++round) {
     const double trace_s = trace_seconds(tracer, frames, candidates);
@@ -246,9 +248,15 @@ ThroughputReport measure_throughput(const ThroughputOptions& options) {
     truth_ratios.push_back(truth_s > 0.0 ? words_s / truth_s : 0.0);
     traversal_shares.push_back(words_s > 0.0 ? traversal_s / words_s : 0.0);
     trace_shares.push_back(words_s > 0.0 ? trace_s / words_s : 0.0);
-    single_thread_best =
-        std::min(single_thread_best,
-                 one_thread.execute([&] { return end_to_end_seconds(simulator, setup, 1); }));
+    const double trace_1_s =
+        one_thread.execute([&] { return trace_seconds(tracer, frames, candidates); });
+    const double traversal_1_s =
+        one_thread.execute([&] { return trace_seconds(traversal, frames, candidates); });
+    const double single_s =
+        one_thread.execute([&] { return end_to_end_seconds(simulator, setup, 1); });
+    single_thread_best = std::min(single_thread_best, single_s);
+    traversal_shares_1.push_back(single_s > 0.0 ? traversal_1_s / single_s : 0.0);
+    trace_shares_1.push_back(single_s > 0.0 ? trace_1_s / single_s : 0.0);
     progress.note("single thread", round, options.repeats, rate(single_thread_best));
     noise_off_best = std::min(noise_off_best, end_to_end_seconds(noise_off, setup, threads));
     progress.note("receiver noise off", round, options.repeats, rate(noise_off_best));
@@ -287,6 +295,8 @@ ThroughputReport measure_throughput(const ThroughputOptions& options) {
   report.traversal_only_pulses_per_s = rate(traversal_best);
   report.traversal_share_paired = median(traversal_shares);
   report.end_to_end_over_trace_paired = median(trace_shares);
+  report.traversal_share_single_thread_paired = median(traversal_shares_1);
+  report.end_to_end_over_trace_single_thread_paired = median(trace_shares_1);
   report.realtime_factor = report.end_to_end_pulses_per_s / scan.prf_hz;
   report.trace_api = api;
   report.peak_rss_mb = peak_rss_mb();

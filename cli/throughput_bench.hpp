@@ -10,7 +10,8 @@
 //   end_to_end   — everything `owsim run` does with the winning form (pattern, poses, rays,
 //                  trace, receiver, word packing) writing flight.d64 / flight.hellas into a
 //                  temporary folder, the other outputs off (as on a long flight, --outputs d64);
-//   single_thread — the same end-to-end run in a TBB arena of one thread;
+//   single_thread — the same end-to-end run in a TBB arena of one thread, paired by round with
+//                  trace-only and traversal-only in the same arena;
 //   las, points  — the same end-to-end run writing points.las alone (--outputs las), and the three
 //                  point files (--outputs points), instead of the words;
 //   brute_force  — the source's method (every ray against every segment, cylinder and triangle)
@@ -72,6 +73,11 @@ struct ThroughputReport {
   // Trace-only's seconds over end-to-end's (on every thread), each round's pair, the median: the
   // end-to-end-over-trace-only figure with the machine's drift between rounds paired out.
   double end_to_end_over_trace_paired = 0.0;
+  // The same two pairs on one thread (a TBB arena of one): traversal-only's and trace-only's
+  // seconds over single_thread's end-to-end, each round's, the median — the share of a one-thread
+  // run that is Embree's traversal, and end-to-end over trace-only without the second core.
+  double traversal_share_single_thread_paired = 0.0;
+  double end_to_end_over_trace_single_thread_paired = 0.0;
 };
 
 [[nodiscard]] ThroughputReport measure_throughput(const ThroughputOptions& options);

@@ -62,7 +62,8 @@ TEST(CliBench, JsonHoldsEveryFieldConsistently) {
        {"end_to_end_pulses_per_s", "trace_only_pulses_per_s", "brute_force_pulses_per_s",
         "single_thread_pulses_per_s", "las_pulses_per_s", "points_pulses_per_s",
         "truth_pulses_per_s", "realtime_factor", "peak_rss_mb", "traversal_only_pulses_per_s",
-        "traversal_share_paired", "end_to_end_over_trace_paired"}) {
+        "traversal_share_paired", "end_to_end_over_trace_paired",
+        "traversal_share_single_thread_paired", "end_to_end_over_trace_single_thread_paired"}) {
     ASSERT_TRUE(report.at(key).is_number()) << key;
     const double value = report.at(key).get<double>();
     EXPECT_TRUE(std::isfinite(value) && value > 0.0) << key << " = " << value;
