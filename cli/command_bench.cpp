@@ -125,7 +125,8 @@ void add_bench_command(CLI::App& app, CommandResult& /*result*/) {
       "else) into a temporary folder; trace-only traces the same rays with Embree alone, in "
       "each query form; traversal-only the same rays through the same BVHs with the callbacks "
       "reduced to recording the hit (Embree's own part of a pulse); single thread is end-to-end on "
-      "one thread; brute force traces a subset "
+      "one thread, each round paired with trace-only and traversal-only on one thread; brute "
+      "force traces a subset "
       "without the BVH and is scaled to the whole frames.");
   command->callback([options, json, quiet] {
     options->progress = !*quiet;
