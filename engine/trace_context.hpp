@@ -13,9 +13,12 @@ namespace owsim {
 
 class EmbreeScene;
 
-// The last cylinder hit the user-geometry callback accepted for a ray, in double precision.
+// The last cylinder hit the user-geometry callback accepted for a ray, in double precision. No
+// member initialisers: the tracer sets prim_id to RTC_INVALID_GEOMETRY_ID for each ray it traces,
+// and hit is read only where prim_id names a cylinder (a block's array of records, made for every
+// block, was 14 KB of stores before its first ray).
 struct CylinderRecord {
-  unsigned prim_id = RTC_INVALID_GEOMETRY_ID;
+  unsigned prim_id;
   CylinderHit hit;
 };
 

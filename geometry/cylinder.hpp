@@ -17,11 +17,13 @@ namespace owsim {
 
 enum class CylinderFace { wall, top, bottom };
 
+// Made with all four fields; no member initialisers, so an array of records that hold one (the
+// tracer's per-block cylinder records) is not written when it is made.
 struct CylinderHit {
-  double t = 0.0;                                    // range along the ray (unit_dir has length 1)
-  Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // outward unit normal at the hit
-  double axis_distance_m = 0.0;  // d: distance between the ray line and the axis line
-  CylinderFace face = CylinderFace::wall;
+  double t;                // range along the ray (unit_dir has length 1)
+  Eigen::Vector3d normal;  // outward unit normal at the hit
+  double axis_distance_m;  // d: distance between the ray line and the axis line
+  CylinderFace face;
 };
 
 // Nearest entering hit with t ∈ [t_min, t_max], or nullopt  (SENSOR-SPEC §6, eq 6.7–6.10)
