@@ -85,19 +85,20 @@ void cylinders_intersect(const RTCIntersectFunctionNArguments* args) {
     if (args->valid[i] == 0) continue;
     const unsigned id = RTCRayN_id(rays, args->N, i);
     const PulseRay& ray = context->rays[id];
-    CylinderRecord& record = context->cylinder_hits[id - context->chunk_begin];
+    unsigned& record_prim = context->cylinder_prims[id - context->chunk_begin];
+    CylinderHit& record_hit = context->cylinder_hits[id - context->chunk_begin];
     const float t_far = RTCRayN_tfar(rays, args->N, i);
     // While a cylinder is the nearest hit, compare with its exact range, not the float tfar: a
     // nearer cylinder within one float step, or a coincident one (consecutive spans share a
     // support), is then decided in double, and equal ranges go to the lower cylinder index as in
     // the brute-force tracer, whatever order Embree visits them in.
     const bool cylinder_nearest =
-        record.prim_id != RTC_INVALID_GEOMETRY_ID && static_cast<float>(record.hit.t) == t_far;
-    const double t_max = cylinder_nearest ? record.hit.t : static_cast<double>(t_far);
+        record_prim != RTC_INVALID_GEOMETRY_ID && static_cast<float>(record_hit.t) == t_far;
+    const double t_max = cylinder_nearest ? record_hit.t : static_cast<double>(t_far);
     const auto hit =
         intersect(cylinder, ray.origin_enu_m, ray.dir_enu, RTCRayN_tnear(rays, args->N, i), t_max);
     if (!hit) continue;
-    if (cylinder_nearest && hit->t == record.hit.t && record.prim_id < args->primID) continue;
+    if (cylinder_nearest && hit->t == record_hit.t && record_prim < args->primID) continue;
     RTCRayN_tfar(rays, args->N, i) = static_cast<float>(hit->t);
     RTCHitN_Ng_x(hits, args->N, i) = static_cast<float>(hit->normal.x());
     RTCHitN_Ng_y(hits, args->N, i) = static_cast<float>(hit->normal.y());
@@ -107,7 +108,8 @@ void cylinders_intersect(const RTCIntersectFunctionNArguments* args) {
     RTCHitN_primID(hits, args->N, i) = args->primID;
     RTCHitN_geomID(hits, args->N, i) = args->geomID;
     RTCHitN_instID(hits, args->N, i, 0) = args->context->instID[0];
-    record = CylinderRecord{args->primID, *hit};
+    record_prim = args->primID;
+    record_hit = *hit;
   }
 }
 

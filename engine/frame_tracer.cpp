@@ -47,7 +47,7 @@ double solid_background(const ReceiverNoise& noise, const Eigen::Vector3d& norma
 // where it lies nearer (or Embree reported none); its angle and energy are left to the chunk's
 // batch (the terms go there).
 void record_solid(const EmbreeScene& scene, const ReceiverNoise& noise, const PulseRay& ray,
-                  const RTCHit& solid, const CylinderRecord& cylinder,
+                  const RTCHit& solid, unsigned cylinder_prim, const CylinderHit& cylinder,
                   const std::optional<TriangleHit>& ground, PulseCandidates& out,
                   SurfaceEnergyBatch& batch) {
   const Scene& objects = scene.scene();
@@ -81,14 +81,14 @@ void record_solid(const EmbreeScene& scene, const ReceiverNoise& noise, const Pu
     return;
   }
   if (geom_id == scene.cylinders_geom_id()) {
-    if (cylinder.prim_id != prim_id) throw Error("engine: cylinder hit record out of step");
-    if (ground && ground->t < cylinder.hit.t) {
+    if (cylinder_prim != prim_id) throw Error("engine: cylinder hit record out of step");
+    if (ground && ground->t < cylinder.t) {
       set_ground(*ground);
       return;
     }
     const Cylinder& hit_cylinder = objects.cylinders[prim_id];
-    set_solid(cylinder.hit.t, cylinder_terms(ray, hit_cylinder, cylinder.hit, receiver),
-              cylinder_object_index(objects, prim_id), hit_cylinder.surface, cylinder.hit.normal);
+    set_solid(cylinder.t, cylinder_terms(ray, hit_cylinder, cylinder, receiver),
+              cylinder_object_index(objects, prim_id), hit_cylinder.surface, cylinder.normal);
     return;
   }
   if (scene.is_terrain(geom_id)) set_ground(scene.terrain_hit(solid, ray));
@@ -337,7 +337,8 @@ void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const st
   if (rays.size() != active.size() || rays.size() != candidates.size()) {
     throw Error("engine: rays, active flags and candidate buffers differ in size");
   }
-  std::array<CylinderRecord, kChunk> cylinder_hits;
+  std::array<unsigned, kChunk> cylinder_prims;
+  std::array<CylinderHit, kChunk> cylinder_hits;
   BlockRays block_rays(api_);
   // The block's rays in double, as arrays (the level ground's test and the wire pass's cull).
   RayArrays arrays;
@@ -374,6 +375,7 @@ void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const st
     context.scene = scene_;
     context.rays = rays;
     context.candidates = candidates;
+    context.cylinder_prims = cylinder_prims;
     context.cylinder_hits = cylinder_hits;
     context.chunk_begin = block;
     context.max_range_m = max_range;
@@ -394,7 +396,7 @@ void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const st
         arrays.origin[axis][n] = rays[id].origin_enu_m[axis];
         arrays.dir[axis][n] = rays[id].dir_enu[axis];
       }
-      cylinder_hits[id - block].prim_id = kNoHit;
+      cylinder_prims[id - block] = kNoHit;
       ++n;
     }
     // The level ground's range, where it lies within the counter's range (NaN elsewhere, and
@@ -434,8 +436,8 @@ void FrameTracer::trace_range(std::span<const PulseRay> rays, std::span<const st
       if (!std::isnan(ground_m[i])) {
         ground = TriangleHit{ground_m[i], level_ground[ground_triangle[i]].normal};
       }
-      record_solid(*scene_, noise_, rays[id], block_rays.hit(i), cylinder_hits[id - block], ground,
-                   candidates[id], batch);
+      record_solid(*scene_, noise_, rays[id], block_rays.hit(i), cylinder_prims[id - block],
+                   cylinder_hits[id - block], ground, candidates[id], batch);
     }
     batch.evaluate();
     // Each solid's angle and energy, and, while its candidates are at hand, the ray's search end

@@ -17,8 +17,8 @@ namespace owsim {
 
 enum class CylinderFace { wall, top, bottom };
 
-// Made with all four fields; no member initialisers, so an array of records that hold one (the
-// tracer's per-block cylinder records) is not written when it is made.
+// Made with all four fields; no member initialisers, so an array of them (the tracer's per-block
+// cylinder hits) is not written when it is made.
 struct CylinderHit {
   double t;                // range along the ray (unit_dir has length 1)
   Eigen::Vector3d normal;  // outward unit normal at the hit
