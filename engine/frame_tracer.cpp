@@ -47,7 +47,7 @@ double solid_background(const ReceiverNoise& noise, const Eigen::Vector3d& norma
 // where it lies nearer (or Embree reported none); its angle and energy are left to the chunk's
 // batch (the terms go there).
 void record_solid(const EmbreeScene& scene, const ReceiverNoise& noise, const PulseRay& ray,
-                  const RTCHit& solid, unsigned cylinder_prim, const CylinderHit& cylinder,
+                  const RTCHit& solid, unsigned cylinder_prim, const CylinderHit& cylinder_hit,
                   const std::optional<TriangleHit>& ground, PulseCandidates& out,
                   SurfaceEnergyBatch& batch) {
   const Scene& objects = scene.scene();
@@ -82,13 +82,13 @@ void record_solid(const EmbreeScene& scene, const ReceiverNoise& noise, const Pu
   }
   if (geom_id == scene.cylinders_geom_id()) {
     if (cylinder_prim != prim_id) throw Error("engine: cylinder hit record out of step");
-    if (ground && ground->t < cylinder.t) {
+    if (ground && ground->t < cylinder_hit.t) {
       set_ground(*ground);
       return;
     }
-    const Cylinder& hit_cylinder = objects.cylinders[prim_id];
-    set_solid(cylinder.t, cylinder_terms(ray, hit_cylinder, cylinder, receiver),
-              cylinder_object_index(objects, prim_id), hit_cylinder.surface, cylinder.normal);
+    const Cylinder& cylinder = objects.cylinders[prim_id];
+    set_solid(cylinder_hit.t, cylinder_terms(ray, cylinder, cylinder_hit, receiver),
+              cylinder_object_index(objects, prim_id), cylinder.surface, cylinder_hit.normal);
     return;
   }
   if (scene.is_terrain(geom_id)) set_ground(scene.terrain_hit(solid, ray));
