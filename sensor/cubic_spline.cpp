@@ -44,15 +44,23 @@ std::size_t CubicSpline::interval(double x) const {
   return static_cast<std::size_t>(upper - x_.begin()) - 1;
 }
 
+double CubicSpline::value_in(std::size_t i, double x) const {
+  if (x < x_.front()) return y_.front();
+  if (x > x_.back()) return y_.back();
+  const double h = x_[i + 1] - x_[i];
+  const double a = x - x_[i];      // distance from the left knot
+  const double b = x_[i + 1] - x;  // distance to the right knot
+  return (z_[i + 1] * a * a * a + z_[i] * b * b * b) / (6.0 * h) +
+         (y_[i + 1] / h - h * z_[i + 1] / 6.0) * a + (y_[i] / h - h * z_[i] / 6.0) * b;
+}
+
 CubicSpline::Sample CubicSpline::evaluate_in(std::size_t i, double x) const {
   if (x < x_.front()) return {y_.front(), 0.0};
   if (x > x_.back()) return {y_.back(), 0.0};
   const double h = x_[i + 1] - x_[i];
   const double a = x - x_[i];      // distance from the left knot
   const double b = x_[i + 1] - x;  // distance to the right knot
-  const double value = (z_[i + 1] * a * a * a + z_[i] * b * b * b) / (6.0 * h) +
-                       (y_[i + 1] / h - h * z_[i + 1] / 6.0) * a +
-                       (y_[i] / h - h * z_[i] / 6.0) * b;
+  const double value = value_in(i, x);
   const double derivative = (z_[i + 1] * a * a - z_[i] * b * b) / (2.0 * h) +
                             (y_[i + 1] - y_[i]) / h - h * (z_[i + 1] - z_[i]) / 6.0;
   return {value, derivative};

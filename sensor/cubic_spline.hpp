@@ -30,7 +30,7 @@ class CubicSpline {
 
   // S(x) and S'(x)  (SENSOR-SPEC §5, eq 10.2)
   [[nodiscard]] Sample evaluate(double x) const { return evaluate_in(interval(x), x); }
-  [[nodiscard]] double value(double x) const { return evaluate(x).value; }
+  [[nodiscard]] double value(double x) const { return value_in(interval(x), x); }
   [[nodiscard]] double derivative(double x) const { return evaluate(x).derivative; }
   // S''(x): linear between the knots' second derivatives; 0 outside the range.
   [[nodiscard]] double second_derivative(double x) const;
@@ -40,6 +40,9 @@ class CubicSpline {
   [[nodiscard]] std::size_t interval(double x) const;
   // S and S' on a known interval (x outside the knot range: the end value, derivative 0).
   [[nodiscard]] Sample evaluate_in(std::size_t interval, double x) const;
+  // S alone on a known interval: evaluate_in's value, bit for bit, without the derivative's
+  // divisions (a pose takes six of them twice a scan line).
+  [[nodiscard]] double value_in(std::size_t interval, double x) const;
 
   [[nodiscard]] const std::vector<double>& knots_x() const { return x_; }
   [[nodiscard]] const std::vector<double>& knots_y() const { return y_; }

@@ -133,11 +133,11 @@ Pose Trajectory::pose_at(double time_s) const {
   const std::size_t i = heading_.interval(time_s);  // all six splines share the knots
   Pose pose;
   pose.time_s = time_s;
-  pose.position_enu_m = {east_.evaluate_in(i, time_s).value, north_.evaluate_in(i, time_s).value,
-                         up_.evaluate_in(i, time_s).value};
-  pose.attitude.roll_deg = wrap_180_deg(roll_.evaluate_in(i, time_s).value);
-  pose.attitude.pitch_deg = pitch_.evaluate_in(i, time_s).value;
-  pose.attitude.heading_deg = wrap_360_deg(heading_.evaluate_in(i, time_s).value);
+  pose.position_enu_m = {east_.value_in(i, time_s), north_.value_in(i, time_s),
+                         up_.value_in(i, time_s)};
+  pose.attitude.roll_deg = wrap_180_deg(roll_.value_in(i, time_s));
+  pose.attitude.pitch_deg = pitch_.value_in(i, time_s);
+  pose.attitude.heading_deg = wrap_360_deg(heading_.value_in(i, time_s));
   pose.frame_from_local_enu = frame_rotation_in(i, time_s);
   return pose;
 }
