@@ -41,7 +41,7 @@ class CubicSpline {
   // S and S' on a known interval (x outside the knot range: the end value, derivative 0).
   [[nodiscard]] Sample evaluate_in(std::size_t interval, double x) const;
   // S alone on a known interval: evaluate_in's value, bit for bit, without the derivative's
-  // divisions (a pose takes six of them twice a scan line).
+  // divisions (a pose takes six of them twice a scan line)  (SENSOR-SPEC §5, eq 10.2)
   [[nodiscard]] double value_in(std::size_t interval, double x) const;
 
   [[nodiscard]] const std::vector<double>& knots_x() const { return x_; }
