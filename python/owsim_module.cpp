@@ -29,9 +29,20 @@ namespace {
 
 struct Field {
   const char* name;
-  const char* format;
+  py::object format;  // a numpy dtype, or a format string such as "(3,)<f8"
   std::size_t offset;
 };
+
+// A record's member as a numpy field: its dtype from the member's own C++ type and its offset from
+// the record's layout, so that neither can drift from the struct (a hand-written "<u4" once read a
+// 2-byte member together with the two bytes after it).
+template <typename Record, typename T>
+Field field(const char* name, T Record::*member) {
+  static const Record record{};
+  const auto offset = static_cast<std::size_t>(reinterpret_cast<const char*>(&(record.*member)) -
+                                               reinterpret_cast<const char*>(&record));
+  return Field{name, py::dtype::of<T>(), offset};
+}
 
 py::dtype record_dtype(const std::vector<Field>& fields, std::size_t itemsize) {
   py::list names, formats, offsets;
@@ -53,56 +64,39 @@ py::dtype record_dtype(const std::vector<Field>& fields, std::size_t itemsize) {
 py::dtype returns_dtype() {
   using R = ReturnRecord;
   // Made once and never freed: a static py::dtype would be released after the interpreter.
-  static const py::dtype& dtype =
-      *new py::dtype(record_dtype({{"frame", "<i8", offsetof(R, frame)},
-                                   {"pulse", "<i4", offsetof(R, pulse)},
-                                   {"line", "<i4", offsetof(R, line)},
-                                   {"fiber", "<i4", offsetof(R, fiber)},
-                                   {"return", "<i4", offsetof(R, return_number)},
-                                   {"time_s", "<f8", offsetof(R, time_s)},
-                                   {"range_m", "<f8", offsetof(R, range_m)},
-                                   {"counter", "<u2", offsetof(R, counter)},
-                                   {"e_m", "<f8", offsetof(R, e_m)},
-                                   {"n_m", "<f8", offsetof(R, n_m)},
-                                   {"u_m", "<f8", offsetof(R, u_m)},
-                                   {"lat_deg", "<f8", offsetof(R, lat_deg)},
-                                   {"lon_deg", "<f8", offsetof(R, lon_deg)},
-                                   {"h_m", "<f8", offsetof(R, h_m)},
-                                   {"class", "u1", offsetof(R, surface)},
-                                   {"object", "<u4", offsetof(R, object)},
-                                   {"energy_rel", "<f8", offsetof(R, energy_rel)},
-                                   {"incidence_deg", "<f8", offsetof(R, incidence_deg)},
-                                   {"number_of_returns", "u1", offsetof(R, number_of_returns)}},
-                                  sizeof(R)));
+  static const py::dtype& dtype = *new py::dtype(record_dtype(
+      {field("frame", &R::frame), field("pulse", &R::pulse), field("line", &R::line),
+       field("fiber", &R::fiber), field("return", &R::return_number), field("time_s", &R::time_s),
+       field("range_m", &R::range_m), field("counter", &R::counter), field("e_m", &R::e_m),
+       field("n_m", &R::n_m), field("u_m", &R::u_m), field("lat_deg", &R::lat_deg),
+       field("lon_deg", &R::lon_deg), field("h_m", &R::h_m), field("class", &R::surface),
+       field("object", &R::object), field("energy_rel", &R::energy_rel),
+       field("incidence_deg", &R::incidence_deg),
+       field("number_of_returns", &R::number_of_returns)},
+      sizeof(R)));
   return dtype;
 }
 
 // `owsim pattern`'s columns (and the slot within the line).
 py::dtype pulses_dtype() {
   // Made once and never freed: a static py::dtype would be released after the interpreter.
-  static const py::dtype& dtype =
-      *new py::dtype(record_dtype({{"pulse", "<i4", offsetof(Pulse, index)},
-                                   {"line", "<i4", offsetof(Pulse, line)},
-                                   {"slot", "<i4", offsetof(Pulse, slot)},
-                                   {"fiber", "<i4", offsetof(Pulse, fiber)},
-                                   {"reference", "?", offsetof(Pulse, reference)},
-                                   {"time_s", "<f8", offsetof(Pulse, time_s)},
-                                   {"alpha_deg", "<f8", offsetof(Pulse, alpha_deg)},
-                                   {"mirror_beta_deg", "<f8", offsetof(Pulse, mirror_beta_deg)},
-                                   {"beta_deg", "<f8", offsetof(Pulse, beta_deg)},
-                                   {"encoder", "<u4", offsetof(Pulse, encoder)},
-                                   {"fg", "?", offsetof(Pulse, frame_gate)},
-                                   {"lg", "?", offsetof(Pulse, line_gate)},
-                                   {"movdir", "<i4", offsetof(Pulse, mov_dir)}},
-                                  sizeof(Pulse)));
+  static const py::dtype& dtype = *new py::dtype(record_dtype(
+      {field("pulse", &Pulse::index), field("line", &Pulse::line), field("slot", &Pulse::slot),
+       field("fiber", &Pulse::fiber), field("reference", &Pulse::reference),
+       field("time_s", &Pulse::time_s), field("alpha_deg", &Pulse::alpha_deg),
+       field("mirror_beta_deg", &Pulse::mirror_beta_deg), field("beta_deg", &Pulse::beta_deg),
+       field("encoder", &Pulse::encoder), field("fg", &Pulse::frame_gate),
+       field("lg", &Pulse::line_gate), field("movdir", &Pulse::mov_dir)},
+      sizeof(Pulse)));
   return dtype;
 }
 
 py::dtype rays_dtype() {
   static_assert(sizeof(PulseRay) == 6 * sizeof(double));
-  static const py::dtype& dtype = *new py::dtype(
-      record_dtype({{"origin_enu_m", "(3,)<f8", 0}, {"dir_enu", "(3,)<f8", 3 * sizeof(double)}},
-                   sizeof(PulseRay)));
+  static const py::dtype& dtype =
+      *new py::dtype(record_dtype({{"origin_enu_m", py::str("(3,)<f8"), 0},
+                                   {"dir_enu", py::str("(3,)<f8"), 3 * sizeof(double)}},
+                                  sizeof(PulseRay)));
   return dtype;
 }
 

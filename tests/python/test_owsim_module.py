@@ -111,6 +111,20 @@ class Module(unittest.TestCase):
             np.linalg.norm(self.sim.frame(0).rays["dir_enu"][self.sim.frame(0).pulses["fiber"] != 0],
                            axis=1), 1.0, atol=1e-12)
 
+    def test_pulses_hold_what_their_words_hold(self):
+        # A pulse's encoder count (i16), frame gate and line gate are its MilOWS word's bits 47-32,
+        # 31 and 30 (SENSOR-SPEC §8), pulse for pulse: the line's last pulses included, whose gate
+        # byte lies right after the encoder's two.
+        frame = self.sim.frame(1)
+        pulses, words = frame.pulses, frame.words
+        self.assertEqual(pulses["encoder"].dtype, np.int16)
+        in_word = ((words >> np.uint64(32)) & np.uint64(0xFFFF)).astype(np.uint16).view(np.int16)
+        np.testing.assert_array_equal(pulses["encoder"], in_word)
+        self.assertTrue(np.any(pulses["encoder"] < 0) and np.any(pulses["lg"]))
+        np.testing.assert_array_equal(pulses["fg"], (words >> np.uint64(31)) & np.uint64(1) == 1)
+        np.testing.assert_array_equal(pulses["lg"], (words >> np.uint64(30)) & np.uint64(1) == 1)
+        self.assertEqual(np.count_nonzero(pulses["lg"]), PULSES_PER_FRAME // 128)  # 159 lines
+
     def test_class_codes_are_the_c_apis(self):
         # OWSIM_CLASS_* of capi/owsim/owsim.h: the code is the index; 255 unknown
         self.assertEqual(owsim.CLASS_NAMES,
