@@ -320,7 +320,7 @@ const owsim_pulse* owsim_frame_pulses(owsim_frame* frame, size_t* count) {
                                      p.alpha_deg,
                                      p.beta_deg,
                                      p.mirror_beta_deg,
-                                     static_cast<uint32_t>(p.encoder),
+                                     static_cast<int32_t>(p.encoder),
                                      static_cast<uint8_t>(p.frame_gate),
                                      static_cast<uint8_t>(p.line_gate),
                                      static_cast<uint8_t>(p.mov_dir),

@@ -82,6 +82,17 @@ TEST(CApi, EveryExampleAndHellasEqualsOwsimRunFrameForFrame) {
       ASSERT_EQ(pulses, owsim::test::kPulsesPerFrame);
       ASSERT_EQ(rays, owsim::test::kPulsesPerFrame);
       EXPECT_EQ(pulse[returns[0].pulse].fiber, returns[0].fiber);
+      // A MilOWS pulse's encoder count and gates are its word's bits 47-32 (i16), 31 and 30
+      // (SENSOR-SPEC §8), the negative counts included (§3: β = 0 → −21101).
+      if (bytes == pulses * sizeof(uint64_t)) {
+        const auto* word = static_cast<const uint64_t*>(words);
+        for (size_t p = 0; p < pulses; ++p) {
+          const auto count = static_cast<int16_t>(static_cast<uint16_t>(word[p] >> 32));
+          ASSERT_EQ(static_cast<int64_t>(pulse[p].encoder), count) << p;
+          ASSERT_EQ(pulse[p].frame_gate, (word[p] >> 31) & 1) << p;
+          ASSERT_EQ(pulse[p].line_gate, (word[p] >> 30) & 1) << p;
+        }
+      }
       // The first return lies on its pulse's ray at its range.
       const owsim_ray& r = ray[returns[0].pulse];
       EXPECT_NEAR(r.origin_e_m + returns[0].range_m * r.dir_e, returns[0].e_m, 1e-9);

@@ -173,7 +173,7 @@ typedef struct owsim_pulse {
   double alpha_deg;       /* NaN for the reference fiber */
   double beta_deg;        /* the ray's beta, sawtooth included */
   double mirror_beta_deg; /* what the encoder sees */
-  uint32_t encoder;       /* MilOWS motor encoder word; 0 for HELLAS */
+  int32_t encoder;        /* MilOWS motor encoder count, i16 as in the word; 0 for HELLAS */
   uint8_t frame_gate, line_gate, mov_dir, reserved;
 } owsim_pulse;
 
