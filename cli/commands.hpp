@@ -21,5 +21,6 @@ void add_pd_command(CLI::App& app, CommandResult& result);
 void add_score_command(CLI::App& app, CommandResult& result);
 void add_roc_command(CLI::App& app, CommandResult& result);
 void add_studio_command(CLI::App& app, CommandResult& result);
+void add_detect_command(CLI::App& app, CommandResult& result);
 
 }  // namespace owsim::cli

@@ -30,6 +30,7 @@ int main(int argc, char** argv) {
   owsim::cli::add_view_command(app, result);
   owsim::cli::add_pd_command(app, result);
   owsim::cli::add_score_command(app, result);
+  owsim::cli::add_detect_command(app, result);
   owsim::cli::add_roc_command(app, result);
   owsim::cli::add_studio_command(app, result);
   try {

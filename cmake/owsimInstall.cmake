@@ -3,9 +3,10 @@
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
-install(TARGETS owsim owsim_geometry owsim_sensor owsim_engine owsim_io owsim_io_files
+install(TARGETS owsim owsim_geometry owsim_sensor owsim_detection owsim_engine owsim_io owsim_io_files
                 owsim_io_scenario owsim_io_trajectory owsim_io_points owsim_io_images
                 owsim_io_recording owsim_io_run owsim_io_sweep owsim_io_report owsim_io_mcap
+                owsim_io_detections
                 owsim_evaluation owsim_facade
         EXPORT owsimTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT dev

@@ -280,7 +280,12 @@ RunReport run_distributed(Communicator& comm, const Simulation& simulation,
   RunReport report =
       run_report(setup, output_options.directory, start.first_frame, wall_s, threads, comm.size());
   report.setup_s = simulation.build_s() + std::chrono::duration<double>(began - opening).count();
-  if (root) outputs->finish(run_facts(setup.scenario, report));
+  if (root) {
+    outputs->finish(run_facts(setup.scenario, report));
+    if (options.outputs.contains(OutputKind::detections)) {
+      write_run_detections(setup, output_options.scenario, output_options.directory);
+    }
+  }
   comm.barrier();  // every process returns once the files are complete under their names
   return report;
 }

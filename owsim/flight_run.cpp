@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "geometry/error.hpp"
+#include "io/detections/recording_detections.hpp"
 #include "io/run/run_checkpoint.hpp"
 #include "owsim/version.hpp"
 #include "sensor/scan_pattern.hpp"
@@ -207,7 +208,19 @@ RunReport run_flight_outputs(const FlightSetup& setup, const SimulationOptions& 
   RunReport report = run_report(setup, output_options.directory, first, wall_s, threads, 1);
   report.setup_s = build_s + std::chrono::duration<double>(start - opening).count();
   outputs.finish(run_facts(scenario, report));
+  if (options.outputs.contains(OutputKind::detections)) {
+    write_run_detections(setup, flown, output_options.directory);
+  }
   return report;
+}
+
+void write_run_detections(const FlightSetup& setup, const FlownScenario& flown,
+                          const std::filesystem::path& directory) {
+  if (!flown.yaml.empty()) {
+    detect_run_folder(directory, directory);
+    return;
+  }
+  detect_word_file(setup.scenario, directory / word_file_name(setup.scenario.scan), directory);
 }
 
 RunReport run_report(const FlightSetup& setup, const std::filesystem::path& directory,

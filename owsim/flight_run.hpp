@@ -104,6 +104,13 @@ void simulate_frames(const FrameSimulator& simulator, const FlightSetup& setup,
 // pulses/s, real-time factor, threads, processes, owsim version.
 [[nodiscard]] nlohmann::json run_facts(const Scenario& scenario, const RunReport& report);
 
+// detections.csv of a finished run in `directory` (output `detections`): the reference detector
+// over the word file the run wrote, as `owsim detect` runs it on the folder — the folder's
+// scenario.yaml when the run wrote one (`flown` not empty), else `setup`'s scenario — so the two
+// write the same bytes whatever the threads, processes or resumptions that made the words.
+void write_run_detections(const FlightSetup& setup, const FlownScenario& flown,
+                          const std::filesystem::path& directory);
+
 // A whole run on the calling thread's TBB arena with `threads` workers. `source_hash` identifies
 // the scenario's text (its file or the text it was opened from): it goes into the checkpoint, so
 // --resume refuses a checkpoint of another scenario; empty (a scenario built in code) → a run

@@ -17,7 +17,8 @@ constexpr std::pair<OutputKind, std::string_view> kNames[] = {
     {OutputKind::summary, "summary"},
     {OutputKind::truth, "truth"},
     {OutputKind::quicklook, "quicklook"},
-    {OutputKind::mcap, "mcap"}};
+    {OutputKind::mcap, "mcap"},
+    {OutputKind::detections, "detections"}};
 constexpr OutputKind kPointKinds[] = {OutputKind::csv, OutputKind::las, OutputKind::ply};
 
 }  // namespace
@@ -26,6 +27,7 @@ std::set<OutputKind> all_outputs() {
   std::set<OutputKind> kinds;
   for (const auto& [kind, name] : kNames) kinds.insert(kind);
   kinds.erase(OutputKind::mcap);  // asked for by name only
+  kinds.erase(OutputKind::detections);
   return kinds;
 }
 
@@ -46,9 +48,10 @@ std::set<OutputKind> parse_output_list(std::string_view list) {
       throw input_error("--outputs",
                         "unknown output '" + std::string(item) +
                             "' (expected d64, points, csv, las, ply, trajectory, summary, "
-                            "truth, quicklook, mcap)");
+                            "truth, quicklook, mcap, detections)");
     }
     kinds.insert(known->first);
+    if (known->first == OutputKind::detections) kinds.insert(OutputKind::d64);  // it reads them
   }
   return kinds;
 }

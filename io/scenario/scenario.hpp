@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "detection/detector_params.hpp"
 #include "geometry/forest.hpp"
 #include "geometry/geodetic_frame.hpp"
 #include "geometry/scene.hpp"
@@ -85,6 +86,7 @@ struct Scenario {
   Mount mount;              // sensor.mount
   TrajectorySpec trajectory;
   SceneSpec scene;
+  DetectorParams detector;  // the reference obstacle detector's `detector:` section (DETECTION-SPEC)
   std::vector<InputFile> input_files;  // every file its keys named, in the order read
 };
 

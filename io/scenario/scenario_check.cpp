@@ -323,6 +323,8 @@ void validate_scenario(const Scenario& scenario) {
   check_mount(scenario.mount);
   check_trajectory(scenario.trajectory);
   check_scene(scenario);
+  const std::vector<std::string> detector = detector_param_problems(scenario.detector);
+  if (!detector.empty()) throw Error("detector." + detector.front());
 }
 
 }  // namespace owsim

@@ -118,6 +118,7 @@ class ScenarioReader {
       read_scene(*scene);
     }
     if (const auto weather = root.get("weather")) read_weather(*weather);
+    if (const auto detector = root.get("detector")) read_detector(*detector);
     root.finish();
 
     scenario_.scan.counter = scenario_.receiver.counter;
@@ -311,6 +312,29 @@ class ScenarioReader {
       const double elevation_deg = map.require("elevation_deg").number();
       sun = sun_at_angles(elevation_deg, map.require("azimuth_deg").number());
     }
+  }
+
+  // detector: the reference obstacle detector's parameters (DETECTION-SPEC; every key optional,
+  // detection/detector_params.hpp's defaults and ranges).
+  void read_detector(const YamlValue& value) {
+    YamlMap map(value);
+    DetectorParams& detector = scenario_.detector;
+    for (const DetectorKey& key : detector_keys()) {
+      const std::optional<YamlValue> item = map.get(key.name);
+      if (!item) continue;
+      if (key.number == nullptr) {
+        detector.min_points = static_cast<int>(item->integer(static_cast<std::int64_t>(key.min),
+                                                             static_cast<std::int64_t>(key.max)));
+      } else {
+        detector.*key.number = item->number();
+      }
+      for (const std::string& problem : detector_param_problems(detector)) {
+        if (problem.starts_with(std::string(key.name) + ": ")) {
+          item->fail(problem.substr(key.name.size() + 2));
+        }
+      }
+    }
+    map.finish();
   }
 
   // ---- trajectory ----

@@ -1,0 +1,41 @@
+#pragma once
+// The visible ground (DETECTION-SPEC §2 Decision): the lowest surface the sensor has seen there,
+// estimated from the returns alone, never from the scene's terrain. The local frame is cut into
+// square cells; each cell keeps the two lowest returns ever seen in it and takes the higher of
+// them as its ground — one false return (SENSOR-SPEC §11: the receiver triggers on noise at any
+// range, below the ground too) does not sink it, while a surface seen twice does — and the ground
+// under a point is the lowest of the 3×3 cells around it that have a ground (so a pole's or a
+// tree's own cell does not hide the ground beside it). The cells live in a fixed toroidal table that covers a square of at least
+// 2 × reach metres, so memory stays flat over hours of flight; a cell farther than that from where
+// the aircraft now looks is forgotten when a new one takes its slot.
+#include <cstdint>
+#include <vector>
+
+namespace owsim {
+
+class GroundMap {
+ public:
+  // Cells of `cell_m` metres over a table reaching at least `reach_m` each way.
+  GroundMap(double cell_m, double reach_m);
+
+  // A return at (e, n, u): lowers its cell's ground to u.
+  void add(double e, double n, double u);
+  // The lowest cell ground in the 3×3 cells around (e, n); NaN when none of them has one.
+  [[nodiscard]] double ground_u(double e, double n) const;
+  [[nodiscard]] double cell_m() const { return cell_m_; }
+
+ private:
+  struct Cell {
+    std::int64_t i = INT64_MIN;
+    std::int64_t j = INT64_MIN;
+    double lowest = 0.0;
+    double second = 0.0;  // +inf until a second return
+  };
+  [[nodiscard]] std::size_t slot(std::int64_t i, std::int64_t j) const;
+
+  double cell_m_;
+  std::int64_t side_;  // cells per side of the table
+  std::vector<Cell> cells_;
+};
+
+}  // namespace owsim

@@ -1,0 +1,172 @@
+#include "detection/obstacle_tracks.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <tuple>
+
+namespace owsim {
+namespace {
+
+constexpr std::size_t kSample = 16;
+constexpr double kVoxelM = 1.0;
+
+std::uint64_t voxel_key(const Eigen::Vector3d& p) {
+  const auto part = [](double v) {
+    return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(v / kVoxelM)) +
+                                      (std::int64_t{1} << 20)) &
+           0x1FFFFFu;
+  };
+  return (part(p.x()) << 42) | (part(p.y()) << 21) | part(p.z());
+}
+
+bool is_wire(ObstacleClass kind) { return kind == ObstacleClass::wire; }
+
+// How far an obstacle's point lies from a track (what association averages). A solid: the distance
+// to the nearest remembered point. A wire: across the track's line in plan and in height from the
+// remembered point nearest along it, so a piece of a conductor seen for the first time continues
+// the conductor's track; `along_slack` (returned) is that point's distance along the line, which
+// widens the tolerance (a catenary rises away from where it was seen).
+struct Miss {
+  double distance_m;
+  double along_m;
+};
+
+Miss miss_of(const ObstacleTrack& track, const PlanExtent& line, const Eigen::Vector2d& centre,
+             const Eigen::Vector3d& p) {
+  if (!is_wire(track.kind)) {
+    double best = std::numeric_limits<double>::infinity();
+    for (const Eigen::Vector3d& r : track.remembered) best = std::min(best, (r - p).squaredNorm());
+    return {std::sqrt(best), 0.0};
+  }
+  const Eigen::Vector2d d = p.head<2>() - centre;
+  const double s = d.dot(line.axis);
+  const double across = std::abs(d.x() * line.axis.y() - d.y() * line.axis.x());
+  const Eigen::Vector3d* nearest = nullptr;
+  double nearest_ds = std::numeric_limits<double>::infinity();
+  for (const Eigen::Vector3d& r : track.remembered) {
+    const double ds = std::abs((r.head<2>() - centre).dot(line.axis) - s);
+    if (ds < nearest_ds) {
+      nearest_ds = ds;
+      nearest = &r;
+    }
+  }
+  return {std::hypot(across, p.z() - nearest->z()), nearest_ds};
+}
+
+struct Pair {
+  double mean_m;
+  std::size_t track, obstacle;
+};
+
+}  // namespace
+
+void ObstacleTracks::support(ObstacleTrack& track, const FrameObstacle& obstacle, double time_s) {
+  track.kind = obstacle.kind;
+  track.last_support_s = time_s;
+  track.points_now = static_cast<std::uint32_t>(obstacle.points.size());
+  track.base_u_m =
+      track.remembered.empty() ? obstacle.base_u_m : std::min(track.base_u_m, obstacle.base_u_m);
+  for (const Eigen::Vector3d& p : obstacle.points) remember(track, p);
+}
+
+void ObstacleTracks::remember(ObstacleTrack& track, const Eigen::Vector3d& p) {
+  if (track.remembered.size() >= kMaxRememberedPoints) return;
+  if (!track.voxels.insert(voxel_key(p)).second) return;
+  if (track.remembered.empty()) {
+    track.lo = track.hi = p;
+  } else {
+    track.lo = track.lo.cwiseMin(p);
+    track.hi = track.hi.cwiseMax(p);
+  }
+  track.remembered.push_back(p);
+}
+
+void ObstacleTracks::update(std::span<const FrameObstacle> obstacles, double time_s,
+                            const Eigen::Vector3d& aircraft_enu_m) {
+  for (ObstacleTrack& track : tracks_) track.points_now = 0;
+  std::vector<Pair> pairs;
+  for (std::size_t o = 0; o < obstacles.size(); ++o) {
+    const FrameObstacle& obstacle = obstacles[o];
+    if (obstacle.points.empty()) continue;
+    Eigen::Vector3d lo = obstacle.points.front(), hi = lo;
+    double range = std::numeric_limits<double>::infinity();
+    for (const Eigen::Vector3d& p : obstacle.points) {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+      range = std::min(range, (p - aircraft_enu_m).norm());
+    }
+    const double reach = 2.0 + 0.01 * range;
+    const std::size_t step = std::max<std::size_t>(1, obstacle.points.size() / kSample);
+    for (std::size_t t = 0; t < tracks_.size(); ++t) {
+      const ObstacleTrack& track = tracks_[t];
+      const bool wire = is_wire(track.kind);
+      if (wire != is_wire(obstacle.kind)) continue;
+      if (!wire && ((lo.array() - reach > track.hi.array()).any() ||
+                    (hi.array() + reach < track.lo.array()).any())) {
+        continue;
+      }
+      PlanExtent line;
+      Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+      if (wire) {
+        line = plan_extent(track.remembered);
+        for (const Eigen::Vector3d& r : track.remembered) centre += r.head<2>();
+        centre /= static_cast<double>(track.remembered.size());
+      }
+      double sum = 0.0;
+      std::size_t near = 0, sampled = 0;
+      for (std::size_t k = 0; k < obstacle.points.size(); k += step) {
+        const Miss miss = miss_of(track, line, centre, obstacle.points[k]);
+        sum += miss.distance_m;
+        const double within = wire ? 2.0 * params_.wire_band_m + 0.1 * miss.along_m : reach;
+        near += miss.distance_m <= within ? 1 : 0;
+        ++sampled;
+      }
+      if (2 * near >= sampled) pairs.push_back({sum / static_cast<double>(sampled), t, o});
+    }
+  }
+  std::sort(pairs.begin(), pairs.end(), [&](const Pair& a, const Pair& b) {
+    return std::tie(a.mean_m, tracks_[a.track].id, a.obstacle) <
+           std::tie(b.mean_m, tracks_[b.track].id, b.obstacle);
+  });
+  std::vector<std::uint8_t> track_taken(tracks_.size(), 0), obstacle_taken(obstacles.size(), 0);
+  std::vector<std::size_t> taken_by(obstacles.size(), 0);
+  for (const Pair& pair : pairs) {
+    if (track_taken[pair.track] || obstacle_taken[pair.obstacle]) continue;
+    track_taken[pair.track] = obstacle_taken[pair.obstacle] = 1;
+    taken_by[pair.obstacle] = pair.track;
+    support(tracks_[pair.track], obstacles[pair.obstacle], time_s);
+  }
+  // A track that this frame's obstacle also continues, but that another track took, is the same
+  // obstacle seen in pieces before: it joins that track, which keeps the older id.
+  std::vector<std::uint8_t> absorbed(tracks_.size(), 0);
+  for (const Pair& pair : pairs) {
+    if (track_taken[pair.track] || absorbed[pair.track] || !obstacle_taken[pair.obstacle]) continue;
+    ObstacleTrack& from = tracks_[pair.track];
+    ObstacleTrack& into = tracks_[taken_by[pair.obstacle]];
+    into.id = std::min(into.id, from.id);
+    into.base_u_m = std::min(into.base_u_m, from.base_u_m);
+    for (const Eigen::Vector3d& p : from.remembered) remember(into, p);
+    absorbed[pair.track] = 1;
+  }
+  for (std::size_t o = 0; o < obstacles.size(); ++o) {
+    if (obstacle_taken[o] || obstacles[o].points.empty()) continue;
+    ObstacleTrack track;
+    track.id = next_id_++;
+    support(track, obstacles[o], time_s);
+    tracks_.push_back(std::move(track));
+  }
+  absorbed.resize(tracks_.size(), 0);  // the new tracks are kept
+  std::size_t kept = 0;
+  for (std::size_t t = 0; t < tracks_.size(); ++t) {
+    if (absorbed[t] || time_s - tracks_[t].last_support_s > params_.hold_s) continue;
+    if (kept != t) tracks_[kept] = std::move(tracks_[t]);
+    ++kept;
+  }
+  tracks_.resize(kept);
+  // By id: a track that took an older one's id moves to its place.
+  std::sort(tracks_.begin(), tracks_.end(),
+            [](const ObstacleTrack& a, const ObstacleTrack& b) { return a.id < b.id; });
+}
+
+}  // namespace owsim
