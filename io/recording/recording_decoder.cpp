@@ -315,9 +315,6 @@ RecordingDecoder::RecordingDecoder(std::filesystem::path path, const ScanParams&
       layout_.pulse_time_s(scan_, layout_.last_frame, layout_.last_pulse_in_frame);
 
   // Pass 3 (next()): the words, frame by frame.
-  if (scan_.model == SensorModel::milows) {
-    mirror_beta_by_encoder_.assign(std::size_t{1} << 16, std::numeric_limits<double>::quiet_NaN());
-  }
   source_ = std::make_unique<WordSource>(path_, scan_.model);
   std::uint64_t skipped = 0;
   for (std::uint64_t i = 0; i < layout_.first_pulse_word; ++i) source_->next(skipped);
@@ -350,63 +347,27 @@ bool RecordingDecoder::next(DecodedFrame& frame) {
 }
 
 void RecordingDecoder::decode_words(DecodedFrame& frame) {
-  const std::int64_t per_frame = scan_.pulses_per_frame();
-  const auto first_pulse = static_cast<int>(
-      layout_.first_global_pulse + static_cast<std::int64_t>(frame.first_word) -
-      static_cast<std::int64_t>(layout_.first_pulse_word) - frame.frame * per_frame);
-  // A frame as the pattern numbers it; the decoded fields replace the pattern's below.
-  FrameSweep pattern;
-  pattern.frame = frame.frame;
-  pattern.direction = (frame.frame & 1) == 0 ? 1 : -1;
-  const TagClock clock = tag_clock(scan_.model);
-  std::uint64_t mismatches = 0;
-  for (std::size_t j = 0; j < frame.words.size(); ++j) {
-    const int k = first_pulse + static_cast<int>(j);
-    const WordFields word = fields_of(scan_.model, frame.words[j], scan_.counter.timeout_counts);
-    Pulse pulse = pulse_of_frame(scan_, pattern, k);
-    pulse.time_s = layout_.pulse_time_s(scan_, frame.frame, k);
-    pulse.frame_gate = word.frame_gate;
-    pulse.line_gate = word.line_gate;
-    pulse.mov_dir = word.mov_dir ? 1 : 0;
-    if (scan_.model == SensorModel::milows) {
-      pulse.encoder = word.encoder;
-      double& beta = mirror_beta_by_encoder_[static_cast<std::size_t>(word.encoder + 32768)];
-      if (std::isnan(beta)) beta = mirror_beta_deg_from_encoder(word.encoder);
-      pulse.mirror_beta_deg = beta;
-      pulse.beta_deg = pulse.mirror_beta_deg + sawtooth_deg(scan_, pulse.fiber);
-    } else {
-      pulse.encoder = 0;
-    }
-    const std::uint16_t expected_tag = clock.modulus == kMilowsTimeTagModulus
-                                           ? milows_time_tag(pulse.time_s)
-                                           : hellas_time_tag(pulse.time_s);
-    if (expected_tag != word.time_tag) ++mismatches;
-    frame.pulses.push_back(pulse);
-    frame.counter1.push_back(word.counter1);
-    frame.counter2.push_back(word.counter2);
-  }
-  tag_mismatches_ += mismatches;
-
-  frame.ni_pulse = -1;
-  frame.sweep = pattern;
-  frame.sweep.start_s = layout_.pulse_time_s(scan_, frame.frame, 0);
-  if (scan_.model == SensorModel::hellas) {
-    decode_hellas_beta(frame);
-    return;
-  }
-  // MilOWS: β rises while the motor angle (and its encoder count) falls (§3: dφ/dβ < 0).
-  frame.beta_source = MirrorBetaSource::encoder;
-  const Pulse& first = frame.pulses.front();
-  const Pulse& last = frame.pulses.back();
-  if (last.encoder != first.encoder) frame.sweep.direction = last.encoder < first.encoder ? 1 : -1;
-  for (Pulse& pulse : frame.pulses) pulse.mov_dir = frame.sweep.direction > 0 ? 0 : 1;
-  frame.sweep.mirror_beta_start_deg = first.mirror_beta_deg - frame.sweep.direction *
-                                                                  scan_.sweep_deg * first.index /
-                                                                  static_cast<double>(per_frame);
+  tag_mismatches_ += decode_frame_words(scan_, layout_, frame);
 }
 
-void RecordingDecoder::decode_hellas_beta(DecodedFrame& frame) const {
-  const double maf = hellas_mirror_angle_factor_deg(scan_);
+namespace {
+
+// Mirror β by encoder count (index count + 32768): the inverse §3 polynomial solved once per count
+// for the whole process (65,536 Newton solves, a few milliseconds), not once per pulse.
+const std::vector<double>& mirror_beta_by_encoder() {
+  static const std::vector<double> table = [] {
+    std::vector<double> out(std::size_t{1} << 16);
+    for (std::size_t k = 0; k < out.size(); ++k) {
+      out[k] = mirror_beta_deg_from_encoder(static_cast<EncoderCount>(static_cast<int>(k) - 32768));
+    }
+    return out;
+  }();
+  return table;
+}
+
+// HELLAS: the frame's mirror β from its NI mark, the file's header word or the nominal start.
+void decode_hellas_beta(const ScanParams& scan, const RecordingLayout& layout, DecodedFrame& frame) {
+  const double maf = hellas_mirror_angle_factor_deg(scan);
   const int direction = frame.pulses.front().mov_dir != 0 ? -1 : 1;
   const int first_pulse = frame.pulses.front().index;
   int ni_pulse = -1;
@@ -421,22 +382,96 @@ void RecordingDecoder::decode_hellas_beta(DecodedFrame& frame) const {
   double beta_zero = 0.0;
   if (ni_pulse >= 0) {
     frame.beta_source = MirrorBetaSource::ni_mark;
-    beta_zero = hellas_mirror_beta_deg(scan_, 0, ni_pulse, direction);
-  } else if (frame.first_word == layout_.first_pulse_word && layout_.hellas_header_code) {
+    beta_zero = hellas_mirror_beta_deg(scan, 0, ni_pulse, direction);
+  } else if (frame.first_word == layout.first_pulse_word && layout.hellas_header_code) {
     // The header holds the mirror angle before the file's first pulse: β of that pulse.
     frame.beta_source = MirrorBetaSource::header;
     beta_zero =
-        hellas_beta_from_header_code(*layout_.hellas_header_code) - direction * first_pulse * maf;
+        hellas_beta_from_header_code(*layout.hellas_header_code) - direction * first_pulse * maf;
   } else {
     frame.beta_source = MirrorBetaSource::nominal;
-    beta_zero = -0.5 * scan_.sweep_deg * direction;
+    beta_zero = -0.5 * scan.sweep_deg * direction;
   }
   frame.sweep.direction = direction;
   frame.sweep.mirror_beta_start_deg = beta_zero;
   for (Pulse& pulse : frame.pulses) {
     pulse.mirror_beta_deg = beta_zero + direction * pulse.index * maf;
-    pulse.beta_deg = pulse.mirror_beta_deg + sawtooth_deg(scan_, pulse.fiber);
+    pulse.beta_deg = pulse.mirror_beta_deg + sawtooth_deg(scan, pulse.fiber);
   }
+}
+
+}  // namespace
+
+RecordingLayout grid_recording_layout(const ScanParams& scan,
+                                      std::optional<std::uint32_t> hellas_header_word) {
+  RecordingLayout layout;
+  layout.timing = RecordingTiming::scenario_grid;
+  if (scan.model == SensorModel::hellas && hellas_header_word) {
+    layout.hellas_header_word = *hellas_header_word;
+    layout.hellas_header_code = unpack_hellas(*hellas_header_word).counter;
+    layout.first_pulse_word = 1;
+  }
+  layout.first_pulse_time_s = owsim::pulse_time_s(scan, 0, 0);
+  return layout;
+}
+
+std::uint64_t decode_frame_words(const ScanParams& scan, const RecordingLayout& layout,
+                                 DecodedFrame& frame) {
+  const std::int64_t per_frame = scan.pulses_per_frame();
+  const auto first_pulse = static_cast<int>(
+      layout.first_global_pulse + static_cast<std::int64_t>(frame.first_word) -
+      static_cast<std::int64_t>(layout.first_pulse_word) - frame.frame * per_frame);
+  // A frame as the pattern numbers it; the decoded fields replace the pattern's below.
+  FrameSweep pattern;
+  pattern.frame = frame.frame;
+  pattern.direction = (frame.frame & 1) == 0 ? 1 : -1;
+  const TagClock clock = tag_clock(scan.model);
+  const std::vector<double>& mirror_beta = mirror_beta_by_encoder();
+  std::uint64_t mismatches = 0;
+  frame.pulses.clear();
+  frame.counter1.clear();
+  frame.counter2.clear();
+  for (std::size_t j = 0; j < frame.words.size(); ++j) {
+    const int k = first_pulse + static_cast<int>(j);
+    const WordFields word = fields_of(scan.model, frame.words[j], scan.counter.timeout_counts);
+    Pulse pulse = pulse_of_frame(scan, pattern, k);
+    pulse.time_s = layout.pulse_time_s(scan, frame.frame, k);
+    pulse.frame_gate = word.frame_gate;
+    pulse.line_gate = word.line_gate;
+    pulse.mov_dir = word.mov_dir ? 1 : 0;
+    if (scan.model == SensorModel::milows) {
+      pulse.encoder = word.encoder;
+      pulse.mirror_beta_deg = mirror_beta[static_cast<std::size_t>(word.encoder + 32768)];
+      pulse.beta_deg = pulse.mirror_beta_deg + sawtooth_deg(scan, pulse.fiber);
+    } else {
+      pulse.encoder = 0;
+    }
+    const std::uint16_t expected_tag = clock.modulus == kMilowsTimeTagModulus
+                                           ? milows_time_tag(pulse.time_s)
+                                           : hellas_time_tag(pulse.time_s);
+    if (expected_tag != word.time_tag) ++mismatches;
+    frame.pulses.push_back(pulse);
+    frame.counter1.push_back(word.counter1);
+    frame.counter2.push_back(word.counter2);
+  }
+
+  frame.ni_pulse = -1;
+  frame.sweep = pattern;
+  frame.sweep.start_s = layout.pulse_time_s(scan, frame.frame, 0);
+  if (scan.model == SensorModel::hellas) {
+    decode_hellas_beta(scan, layout, frame);
+    return mismatches;
+  }
+  // MilOWS: β rises while the motor angle (and its encoder count) falls (§3: dφ/dβ < 0).
+  frame.beta_source = MirrorBetaSource::encoder;
+  const Pulse& first = frame.pulses.front();
+  const Pulse& last = frame.pulses.back();
+  if (last.encoder != first.encoder) frame.sweep.direction = last.encoder < first.encoder ? 1 : -1;
+  for (Pulse& pulse : frame.pulses) pulse.mov_dir = frame.sweep.direction > 0 ? 0 : 1;
+  frame.sweep.mirror_beta_start_deg = first.mirror_beta_deg - frame.sweep.direction *
+                                                                  scan.sweep_deg * first.index /
+                                                                  static_cast<double>(per_frame);
+  return mismatches;
 }
 
 std::string describe(const RecordingLayout& layout, const ScanParams& scan) {

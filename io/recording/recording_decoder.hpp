@@ -143,18 +143,27 @@ class RecordingDecoder {
   class WordSource;
 
   void decode_words(DecodedFrame& frame);
-  void decode_hellas_beta(DecodedFrame& frame) const;
 
   std::filesystem::path path_;
   ScanParams scan_;
   RecordingLayout layout_;
   std::unique_ptr<WordSource> source_;
-  // Mirror β by encoder count (index count + 32768), NaN until first needed: the inverse
-  // polynomial is solved once per count, not once per pulse.
-  std::vector<double> mirror_beta_by_encoder_;
   std::uint64_t pulses_decoded_ = 0;
   std::uint64_t tag_mismatches_ = 0;
 };
+
+// The layout of a recording as `owsim run` writes it — whole frames from frame 0, on the scenario's
+// pulse grid, a HELLAS file's header word first — which the decoder would find in such a file:
+// for decoding frames held in memory (the run's own words) exactly as a file of them decodes.
+[[nodiscard]] RecordingLayout grid_recording_layout(
+    const ScanParams& scan, std::optional<std::uint32_t> hellas_header_word = std::nullopt);
+
+// The decoder's step for one frame: `frame`'s frame, first_word and words set (the pulses from
+// first_word on, as RecordingDecoder::next reads them), the rest filled from them — pulses, counters,
+// sweep, β source. What RecordingDecoder::next does, for words read from anywhere. Thread-safe.
+// Returns the pulses whose time tag disagrees with their rebuilt time.
+std::uint64_t decode_frame_words(const ScanParams& scan, const RecordingLayout& layout,
+                                 DecodedFrame& frame);
 
 // "recording starts mid-frame …", "time on the scenario's pulse grid …": what the layout says, as
 // lines for people (each ending in a newline).
