@@ -1,14 +1,18 @@
-// owsim detect RUN_DIR [--out DIR] [--quiet] — the reference obstacle detector over a run folder's
-// recorded words and navigation (INTERFACE.md "Obstacle warnings", DETECTION-SPEC;
-// io/detections/recording_detections.hpp): detections.csv, the same bytes `owsim run --outputs
-// …,detections` writes in the folder.
+// owsim detect RUN_DIR|SWEEP_DIR [--out DIR] [--quiet] — the reference obstacle detector over the
+// recorded words and navigation of a run folder, or of every member of a sweep folder
+// (INTERFACE.md "Obstacle warnings", DETECTION-SPEC; io/detections/recording_detections.hpp):
+// detections.csv, the same bytes `owsim run --outputs …,detections` writes in the folder. A run's
+// goes to DIR/detections.csv (default the run folder); a sweep's members' to their own folders, or
+// with --out to DIR/<member>.csv — the layout `owsim score --detections DIR` reads.
 #include <fmt/core.h>
 
 #include <chrono>
 #include <filesystem>
 #include <memory>
+#include <vector>
 
 #include "cli/commands.hpp"
+#include "evaluation/truth_table.hpp"
 #include "io/detections/recording_detections.hpp"
 
 namespace owsim::cli {
@@ -20,17 +24,46 @@ struct DetectOptions {
   bool quiet = false;
 };
 
+struct DetectJob {
+  std::filesystem::path run;
+  std::filesystem::path csv;
+};
+
+std::vector<DetectJob> detect_jobs(const DetectOptions& options) {
+  if (!std::filesystem::is_regular_file(options.folder / "sweep.csv")) {
+    const std::filesystem::path out = options.out.empty() ? options.folder : options.out;
+    return {{options.folder, out / "detections.csv"}};
+  }
+  std::vector<DetectJob> jobs;
+  for (const CampaignFlight& member : campaign_flights(options.folder)) {
+    (void)run_recording(member.directory);  // every member checked before any is written
+    jobs.push_back({member.directory, options.out.empty()
+                                          ? member.directory / "detections.csv"
+                                          : options.out / (member.name + ".csv")});
+  }
+  return jobs;
+}
+
 void run_detect(const DetectOptions& options) {
-  const std::filesystem::path out = options.out.empty() ? options.folder : options.out;
   const auto start = std::chrono::steady_clock::now();
-  const DetectionReport report = detect_run_folder(options.folder, out);
+  DetectionReport total;
+  const std::vector<DetectJob> jobs = detect_jobs(options);
+  for (const DetectJob& job : jobs) {
+    const DetectionReport report = detect_run_folder(job.run, job.csv);
+    total.frames += report.frames;
+    total.returns += report.returns;
+    total.warnings += report.warnings;
+    total.tracks += report.tracks;
+  }
   const double wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (options.quiet) return;
   fmt::print(stderr,
-             "{} frames, {} returns: {} warnings from {} tracks in {:.2f} s; written to {}\n",
-             report.frames, report.returns, report.warnings, report.tracks, wall_s,
-             (out / "detections.csv").string());
+             "{} flight{}, {} frames, {} returns: {} warnings from {} tracks in {:.2f} s; written "
+             "to {}\n",
+             jobs.size(), jobs.size() == 1 ? "" : "s", total.frames, total.returns, total.warnings,
+             total.tracks, wall_s,
+             jobs.size() == 1 ? jobs.front().csv.string() : jobs.front().csv.parent_path().string() + "…");
 }
 
 }  // namespace
@@ -39,11 +72,13 @@ void add_detect_command(CLI::App& app, CommandResult& /*result*/) {
   auto options = std::make_shared<DetectOptions>();
   CLI::App* command = app.add_subcommand(
       "detect",
-      "obstacle warnings (wire, pole, tree) from a run folder's recorded words and navigation, "
-      "by the reference detector of the scenario's detector: section");
-  command->add_option("RUN_DIR", options->folder, "a run folder (scenario.yaml and its words)")
+      "obstacle warnings (wire, pole, tree) from a run's recorded words and navigation, by the "
+      "reference detector of the scenario's detector: section");
+  command->add_option("DIR", options->folder, "a run folder, or a sweep folder (every member)")
       ->required();
-  command->add_option("--out", options->out, "where detections.csv goes (default RUN_DIR)");
+  command->add_option("--out", options->out,
+                      "where detections.csv goes (default the run folder); for a sweep, a folder "
+                      "of <member>.csv (default each member's folder)");
   command->add_flag("--quiet", options->quiet, "print nothing on success");
   command->callback([options] { run_detect(*options); });
 }

@@ -127,7 +127,10 @@ FlightOutputOptions run_output_options(const FlightSetup& setup, const nlohmann:
 void encode_frames(const FrameSimulator& simulator, const FlightSetup& setup,
                    const FlightRange& range, int threads, const FrameEncoder& encoder,
                    const std::function<void(const FrameView&, const FrameEncoding&)>& sink,
-                   FrameRecordScope records) {
+                   FrameRecordScope records, FlightDetections* detections) {
+  if (detections != nullptr && !encoder.wants(OutputKind::d64)) {
+    throw Error("engine: the detector reads the words; the encoder does not encode them");
+  }
   if (records == FrameRecordScope::block && encoder.reads_frame_records()) {
     throw Error("engine: the encoder reads whole frames; their records cannot be left in blocks");
   }
@@ -147,26 +150,43 @@ void encode_frames(const FrameSimulator& simulator, const FlightSetup& setup,
   // cache; the rest (points, HELLAS header) once the frame is whole.
   std::vector<FrameEncoding> encodings(static_cast<std::size_t>(frames_in_flight));
   for (FrameEncoding& encoding : encodings) encoder.size_encoding(encoding);
+  // The detector's frames, decoded from the words where the frames were simulated.
+  std::vector<PreparedDetectorFrame> prepared(detections ? encodings.size() : 0);
   run_flight(
       simulator, setup.trajectory, range, frames_in_flight,
       [&](const FrameResult& frame, const FrameView& block, int begin) {
         encoder.encode_pulses(block, begin, encodings[static_cast<std::size_t>(frame.buffer)]);
       },
       [&](const FrameResult& frame) {
+        FrameEncoding& encoding = encodings[static_cast<std::size_t>(frame.buffer)];
         encoder.finish_encoding(
             frame.view(),
-            setup.trajectory.pose_at(pulse_time_s(setup.scenario.scan, frame.frame, 0)),
-            encodings[static_cast<std::size_t>(frame.buffer)]);
+            setup.trajectory.pose_at(pulse_time_s(setup.scenario.scan, frame.frame, 0)), encoding);
+        if (detections != nullptr && !encoding.error) {
+          try {
+            detections->prepare(frame.frame, encoding.milows_words, encoding.hellas_words,
+                                frame.frame == 0 ? std::optional(encoding.hellas_header_word)
+                                                 : std::nullopt,
+                                prepared[static_cast<std::size_t>(frame.buffer)]);
+          } catch (...) {
+            encoding.error = std::current_exception();
+          }
+        }
       },
       [&](const FrameResult& frame) {
-        sink(frame.view(), encodings[static_cast<std::size_t>(frame.buffer)]);
+        const FrameEncoding& encoding = encodings[static_cast<std::size_t>(frame.buffer)];
+        if (detections != nullptr && !encoding.error) {
+          detections->add(prepared[static_cast<std::size_t>(frame.buffer)]);
+        }
+        sink(frame.view(), encoding);
       },
       records);
 }
 
 void simulate_frames(const FrameSimulator& simulator, const FlightSetup& setup,
                      const FlightRange& range, int threads, FlightOutputs& outputs,
-                     const std::function<void(std::int64_t)>& frame_done) {
+                     const std::function<void(std::int64_t)>& frame_done,
+                     FlightDetections* detections) {
   std::int64_t done = 0;
   encode_frames(
       simulator, setup, range, threads, outputs.encoder(),
@@ -175,7 +195,8 @@ void simulate_frames(const FrameSimulator& simulator, const FlightSetup& setup,
         ++done;
         if (frame_done) frame_done(done);
       },
-      outputs.reads_frame_records() ? FrameRecordScope::frame : FrameRecordScope::block);
+      outputs.reads_frame_records() ? FrameRecordScope::frame : FrameRecordScope::block,
+      detections);
 }
 
 RunReport run_flight_outputs(const FlightSetup& setup, const SimulationOptions& simulation,
@@ -195,6 +216,12 @@ RunReport run_flight_outputs(const FlightSetup& setup, const SimulationOptions& 
   FlightOutputs outputs(output_options, setup.scene, scenario.scan, setup.local_frame,
                         checkpoint ? &*checkpoint : nullptr);
   const std::int64_t first = outputs.frames_done();
+  std::optional<FlightDetections> detections;
+  if (options.outputs.contains(OutputKind::detections)) {
+    detections.emplace(scenario, setup.trajectory, output_options.directory / "detections.csv");
+    // A resumed run's detector first sees again the frames its checkpoint holds.
+    if (first > 0) detections->replay(outputs.placed_files().words.partial_path, first);
+  }
 
   const auto start = Clock::now();
   simulate_frames(
@@ -203,24 +230,24 @@ RunReport run_flight_outputs(const FlightSetup& setup, const SimulationOptions& 
         if (!options.progress) return;
         options.progress(RunProgress{first + done, frames, first,
                                      std::chrono::duration<double>(Clock::now() - start).count()});
-      });
+      },
+      detections ? &*detections : nullptr);
   const double wall_s = std::chrono::duration<double>(Clock::now() - start).count();
   RunReport report = run_report(setup, output_options.directory, first, wall_s, threads, 1);
   report.setup_s = build_s + std::chrono::duration<double>(start - opening).count();
   outputs.finish(run_facts(scenario, report));
-  if (options.outputs.contains(OutputKind::detections)) {
-    write_run_detections(setup, flown, output_options.directory);
-  }
+  if (detections) detections->finish();
   return report;
 }
 
 void write_run_detections(const FlightSetup& setup, const FlownScenario& flown,
                           const std::filesystem::path& directory) {
   if (!flown.yaml.empty()) {
-    detect_run_folder(directory, directory);
+    detect_run_folder(directory, directory / "detections.csv");
     return;
   }
-  detect_word_file(setup.scenario, directory / word_file_name(setup.scenario.scan), directory);
+  detect_word_file(setup.scenario, directory / word_file_name(setup.scenario.scan),
+                   directory / "detections.csv");
 }
 
 RunReport run_report(const FlightSetup& setup, const std::filesystem::path& directory,

@@ -12,6 +12,7 @@
 #include <string_view>
 
 #include "engine/flight_pipeline.hpp"
+#include "io/detections/flight_detections.hpp"
 #include "io/run/flight_outputs.hpp"
 #include "io/run/run_checkpoint.hpp"
 #include "owsim/flight_setup.hpp"
@@ -83,17 +84,21 @@ struct RunReport {
 // `sink` in frame order, one at a time. An encoding error is thrown, in frame order. With
 // FrameRecordScope::block (only when the encoder does not read_frame_records) the frames given to
 // `sink` hold their index and sweep but no per-pulse records.
+// With `detections`, each frame's words (the encoder must encode them: output d64) are decoded for
+// the detector where the frame was simulated, and the detector is fed in frame order before `sink`.
 void encode_frames(const FrameSimulator& simulator, const FlightSetup& setup,
                    const FlightRange& range, int threads, const FrameEncoder& encoder,
                    const std::function<void(const FrameView&, const FrameEncoding&)>& sink,
-                   FrameRecordScope records = FrameRecordScope::frame);
+                   FrameRecordScope records = FrameRecordScope::frame,
+                   FlightDetections* detections = nullptr);
 
 // Frames `range` simulated by `simulator` (in parallel on the calling thread's TBB arena, one
 // frame in flight per thread) and fed to `outputs` in frame order. `frame_done` (may be empty) is
 // told how many frames are done after each one.
 void simulate_frames(const FrameSimulator& simulator, const FlightSetup& setup,
                      const FlightRange& range, int threads, FlightOutputs& outputs,
-                     const std::function<void(std::int64_t)>& frame_done = {});
+                     const std::function<void(std::int64_t)>& frame_done = {},
+                     FlightDetections* detections = nullptr);
 
 // The report of a run of `setup` that began at `first_frame` (> 0: resumed) and simulated the rest
 // in `wall_s` with `processes` × `threads` workers.
@@ -104,10 +109,10 @@ void simulate_frames(const FrameSimulator& simulator, const FlightSetup& setup,
 // pulses/s, real-time factor, threads, processes, owsim version.
 [[nodiscard]] nlohmann::json run_facts(const Scenario& scenario, const RunReport& report);
 
-// detections.csv of a finished run in `directory` (output `detections`): the reference detector
-// over the word file the run wrote, as `owsim detect` runs it on the folder — the folder's
-// scenario.yaml when the run wrote one (`flown` not empty), else `setup`'s scenario — so the two
-// write the same bytes whatever the threads, processes or resumptions that made the words.
+// detections.csv of a finished distributed run in `directory` (output `detections`): the
+// reference detector over the word file the run wrote, as `owsim detect` runs it on the folder —
+// the folder's scenario.yaml when the run wrote one (`flown` not empty), else `setup`'s scenario.
+// A run in one process writes the same bytes as it goes (io/detections/flight_detections.hpp).
 void write_run_detections(const FlightSetup& setup, const FlownScenario& flown,
                           const std::filesystem::path& directory);
 

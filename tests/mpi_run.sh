@@ -1,8 +1,8 @@
 #!/bin/sh
 # `mpirun -np N owsim run` against one process (issue 18): every output byte-identical for
-# N = 1, 2, 3 (MilOWS with every output, HELLAS words; flight.mcap for N = 2), a job killed
-# mid-flight resumed by another number of processes to the same bytes, and bad input said in one
-# line.
+# N = 1, 2, 3 (MilOWS with every output, HELLAS words and detections; flight.mcap for N = 2), a
+# job killed mid-flight resumed by another number of processes to the same bytes, and bad input
+# said in one line.
 #   mpi_run.sh OWSIM SOURCE_DIR WORK_DIR
 set -eu
 owsim=$1
@@ -17,14 +17,15 @@ sed 's/model: milows/model: hellas/' "$source/examples/corridor.yaml" > hellas.y
 
 # 50 frames with 8 a block: N = 3 runs two full rounds and a last one only process 0 has frames in.
 "$owsim" run "$source/examples/corridor.yaml" --frames 50 --threads 1 --out ref --quiet
-"$owsim" run hellas.yaml --frames 30 --threads 1 --outputs d64,summary --out ref_hellas --quiet
+"$owsim" run hellas.yaml --frames 30 --threads 1 --outputs d64,summary,detections \
+  --out ref_hellas --quiet
 for n in 1 2 3; do
   $mpirun -np $n "$owsim" run "$source/examples/corridor.yaml" --frames 50 --threads 1 \
     --out mpi$n --quiet
   $same ref mpi$n
   [ $n -ne 3 ] || grep -q '"processes": 3' mpi3/summary.json
   rm -rf mpi$n
-  $mpirun -np $n "$owsim" run hellas.yaml --frames 30 --threads 1 --outputs d64,summary \
+  $mpirun -np $n "$owsim" run hellas.yaml --frames 30 --threads 1 --outputs d64,summary,detections \
     --out hellas$n --quiet
   $same ref_hellas hellas$n
 done

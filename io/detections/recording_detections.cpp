@@ -5,14 +5,10 @@
 
 #include <cmath>
 #include <limits>
-#include <set>
 #include <string>
 #include <system_error>
 
-#include "detection/obstacle_detector.hpp"
 #include "geometry/error.hpp"
-#include "io/detections/detections_csv.hpp"
-#include "io/files/atomic_output_file.hpp"
 #include "io/run/output_kind.hpp"
 #include "io/scenario/scenario_loader.hpp"
 #include "io/trajectory/trajectory_loader.hpp"
@@ -20,34 +16,50 @@
 #include "sensor/range_counter.hpp"
 
 namespace owsim {
-namespace {
-
-constexpr std::size_t kFlushChars = std::size_t{1} << 20;
-
-}  // namespace
-
 void decoded_returns_enu(const DecodedFrame& frame, const PoseSource& poses, const Scenario& scenario,
                          std::vector<Eigen::Vector3d>& out) {
   const RangeCounterParams& counter = scenario.receiver.counter;
+  const Eigen::Matrix3d body_from_src =
+      mount_rotation(scenario.mount) * model_rotation(scenario.scan.model);
+  const int per_line = scenario.scan.fibers_per_line;
+  const double line_s = per_line / scenario.scan.prf_hz;
+  // The frame's lines: runs of pulses with one line index (a partial first or last line too).
+  std::vector<std::size_t> line_starts;
+  for (std::size_t j = 0; j < frame.size(); ++j) {
+    if (j == 0 || frame.pulses[j].line != frame.pulses[j - 1].line) line_starts.push_back(j);
+  }
+  line_starts.push_back(frame.size());
   // Two slots a pulse, NaN where it holds no return; compacted in pulse order below.
   std::vector<Eigen::Vector3d> slots(
       2 * frame.size(), Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN()));
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, frame.size(), 512), [&](const auto& range) {
-    for (std::size_t j = range.begin(); j < range.end(); ++j) {
-      const Pulse& pulse = frame.pulses[j];
-      const std::uint16_t counts[2] = {frame.counter1[j], frame.counter2[j]};
-      if (pulse.reference ||
-          (counts[0] >= counter.timeout_counts && counts[1] >= counter.timeout_counts)) {
-        continue;
-      }
-      const SensorPlacement placement =
-          sensor_placement(poses.pose_at(pulse.time_s), scenario.mount, scenario.scan.model);
-      const Eigen::Vector3d direction =
-          ray_direction_enu(placement, pulse.alpha_deg, pulse.beta_deg);
-      for (int r = 0; r < 2; ++r) {
-        if (counts[r] >= counter.timeout_counts) continue;
-        slots[2 * j + static_cast<std::size_t>(r)] =
-            placement.origin_enu_m + range_from_counter(counts[r], counter) * direction;
+  const auto line_count = line_starts.size() - 1;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, line_count, 8), [&](const auto& range) {
+    for (std::size_t l = range.begin(); l < range.end(); ++l) {
+      const Pulse& first = frame.pulses[line_starts[l]];
+      // The placement at the line's first slot and at the next line's, blended by slot.
+      const double t0 = first.time_s - first.slot / scenario.scan.prf_hz;
+      const SensorPlacement p0 =
+          sensor_placement(poses.pose_at(t0), body_from_src, scenario.mount.lever_arm_m);
+      const SensorPlacement p1 =
+          sensor_placement(poses.pose_at(t0 + line_s), body_from_src, scenario.mount.lever_arm_m);
+      for (std::size_t j = line_starts[l]; j < line_starts[l + 1]; ++j) {
+        const Pulse& pulse = frame.pulses[j];
+        const std::uint16_t counts[2] = {frame.counter1[j], frame.counter2[j]};
+        if (pulse.reference ||
+            (counts[0] >= counter.timeout_counts && counts[1] >= counter.timeout_counts)) {
+          continue;
+        }
+        const double s = static_cast<double>(pulse.slot) / per_line;
+        const Eigen::Matrix3d enu_from_src = (1.0 - s) * p0.enu_from_src + s * p1.enu_from_src;
+        const Eigen::Vector3d origin = (1.0 - s) * p0.origin_enu_m + s * p1.origin_enu_m;
+        const Eigen::Vector3d direction =
+            (enu_from_src * src_from_arc(arc_unit_ray(pulse.alpha_deg, pulse.beta_deg)))
+                .normalized();
+        for (int r = 0; r < 2; ++r) {
+          if (counts[r] >= counter.timeout_counts) continue;
+          slots[2 * j + static_cast<std::size_t>(r)] =
+              origin + range_from_counter(counts[r], counter) * direction;
+        }
       }
     }
   });
@@ -60,43 +72,14 @@ void decoded_returns_enu(const DecodedFrame& frame, const PoseSource& poses, con
 DetectionReport detect_recording(RecordingDecoder& decoder, const PoseSource& poses,
                                  const Scenario& scenario, const std::filesystem::path& csv,
                                  const std::function<void(std::uint64_t, std::uint64_t)>& on_frame) {
-  const ScanParams& scan = decoder.scan();
-  ObstacleDetector detector(scenario.detector,
-                            static_cast<double>(scan.pulses_per_frame()) / scan.prf_hz);
-  AtomicOutputFile file(csv);
-  std::string text(kDetectionsCsvHeader);
-  DetectionReport report;
-  std::set<std::int64_t> tracks;
-  DecodedFrame frame;
-  std::vector<Eigen::Vector3d> returns;
-  while (decoder.next(frame)) {
-    ++report.frames;
-    report.pulses += frame.size();
-    decoded_returns_enu(frame, poses, scenario, returns);
-    report.returns += returns.size();
-    DetectorFrame input;
-    input.frame = frame.frame;
-    input.time_s = frame.sweep.start_s;
-    input.aircraft_enu_m = poses.pose_at(input.time_s).position_enu_m;
-    input.returns_enu_m = returns;
-    const std::span<const ObstacleWarning> warnings = detector.add_frame(input);
-    report.warnings += warnings.size();
-    for (const ObstacleWarning& warning : warnings) tracks.insert(warning.track);
-    append_detection_rows(warnings, text);
-    if (text.size() >= kFlushChars) {
-      file.write(text);
-      text.clear();
-    }
-    if (on_frame) on_frame(report.frames, report.pulses);
-  }
-  file.write(text);
-  file.commit();
-  report.tracks = tracks.size();
-  return report;
+  FlightDetections detections(scenario, poses, csv);
+  detections.add_recording(decoder, std::numeric_limits<std::int64_t>::max(), on_frame);
+  detections.finish();
+  return detections.report();
 }
 
 DetectionReport detect_word_file(const Scenario& scenario, const std::filesystem::path& words,
-                                 const std::filesystem::path& out_dir,
+                                 const std::filesystem::path& csv,
                                  const std::function<void(std::uint64_t, std::uint64_t)>& on_frame) {
   RecordingDecoder decoder(words, scenario.scan);
   const LocalFrame local_frame(scenario.origin);
@@ -107,17 +90,16 @@ DetectionReport detect_word_file(const Scenario& scenario, const std::filesystem
     throw input_error(words.string(), "its pulses lie outside the trajectory's time span: "
                                       "another flight's words, or another trajectory");
   }
+  const std::filesystem::path folder = csv.parent_path().empty() ? "." : csv.parent_path();
   std::error_code error;
-  std::filesystem::create_directories(out_dir, error);
+  std::filesystem::create_directories(folder, error);
   if (error) {
-    throw file_error(out_dir.string(), "cannot create the output folder: " + error.message());
+    throw file_error(folder.string(), "cannot create the output folder: " + error.message());
   }
-  return detect_recording(decoder, trajectory, scenario, out_dir / "detections.csv", on_frame);
+  return detect_recording(decoder, trajectory, scenario, csv, on_frame);
 }
 
-DetectionReport detect_run_folder(const std::filesystem::path& run_dir,
-                                  const std::filesystem::path& out_dir,
-                                  const std::function<void(std::uint64_t, std::uint64_t)>& on_frame) {
+RunRecording run_recording(const std::filesystem::path& run_dir) {
   if (!std::filesystem::is_directory(run_dir)) {
     throw input_error(run_dir.string(), "not a folder");
   }
@@ -127,13 +109,20 @@ DetectionReport detect_run_folder(const std::filesystem::path& run_dir,
                       "not a run folder: it has no scenario.yaml (the scenario as flown, which "
                       "`owsim run` writes)");
   }
-  const Scenario scenario = load_scenario(scenario_path);
-  const std::filesystem::path words = run_dir / word_file_name(scenario.scan);
+  Scenario scenario = load_scenario(scenario_path);
+  std::filesystem::path words = run_dir / word_file_name(scenario.scan);
   if (!std::filesystem::is_regular_file(words)) {
     throw input_error(words.string(),
                       "missing: the detector reads the run's words (`owsim run` output d64)");
   }
-  return detect_word_file(scenario, words, out_dir, on_frame);
+  return {std::move(scenario), std::move(words)};
+}
+
+DetectionReport detect_run_folder(const std::filesystem::path& run_dir,
+                                  const std::filesystem::path& csv,
+                                  const std::function<void(std::uint64_t, std::uint64_t)>& on_frame) {
+  const RunRecording recording = run_recording(run_dir);
+  return detect_word_file(recording.scenario, recording.words, csv, on_frame);
 }
 
 }  // namespace owsim
