@@ -20,6 +20,7 @@ std::size_t GroundMap::slot(std::int64_t i, std::int64_t j) const {
 void GroundMap::add(double e, double n, double u) {
   const auto i = static_cast<std::int64_t>(std::floor(e / cell_m_));
   const auto j = static_cast<std::int64_t>(std::floor(n / cell_m_));
+  ++version_;
   Cell& cell = cells_[slot(i, j)];
   if (cell.i != i || cell.j != j) {
     cell = Cell{i, j, u, std::numeric_limits<double>::infinity()};
@@ -36,6 +37,9 @@ void GroundMap::add(double e, double n, double u) {
 double GroundMap::ground_u(double e, double n) const {
   const auto i = static_cast<std::int64_t>(std::floor(e / cell_m_));
   const auto j = static_cast<std::int64_t>(std::floor(n / cell_m_));
+  const Cell& own = cells_[slot(i, j)];
+  const bool own_cell = own.i == i && own.j == j;
+  if (own_cell && own.around_version == version_) return own.around;
   double lowest = std::numeric_limits<double>::infinity();
   for (std::int64_t di = -1; di <= 1; ++di) {
     for (std::int64_t dj = -1; dj <= 1; ++dj) {
@@ -43,7 +47,12 @@ double GroundMap::ground_u(double e, double n) const {
       if (cell.i == i + di && cell.j == j + dj) lowest = std::min(lowest, cell.second);
     }
   }
-  return std::isinf(lowest) ? std::numeric_limits<double>::quiet_NaN() : lowest;
+  const double ground = std::isinf(lowest) ? std::numeric_limits<double>::quiet_NaN() : lowest;
+  if (own_cell) {
+    own.around = ground;
+    own.around_version = version_;
+  }
+  return ground;
 }
 
 }  // namespace owsim

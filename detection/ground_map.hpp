@@ -20,7 +20,8 @@ class GroundMap {
 
   // A return at (e, n, u): lowers its cell's ground to u.
   void add(double e, double n, double u);
-  // The lowest cell ground in the 3×3 cells around (e, n); NaN when none of them has one.
+  // The lowest cell ground in the 3×3 cells around (e, n); NaN when none of them has one. Kept in
+  // the cell until the next add(), so the many returns of one cell look it up once.
   [[nodiscard]] double ground_u(double e, double n) const;
   [[nodiscard]] double cell_m() const { return cell_m_; }
 
@@ -30,12 +31,16 @@ class GroundMap {
     std::int64_t j = INT64_MIN;
     double lowest = 0.0;
     double second = 0.0;  // +inf until a second return
+    // ground_u of this cell as of `version`.
+    mutable double around = 0.0;
+    mutable std::uint64_t around_version = 0;
   };
   [[nodiscard]] std::size_t slot(std::int64_t i, std::int64_t j) const;
 
   double cell_m_;
   std::int64_t side_;  // cells per side of the table
   std::vector<Cell> cells_;
+  std::uint64_t version_ = 1;  // advanced by every add()
 };
 
 }  // namespace owsim

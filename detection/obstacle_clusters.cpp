@@ -41,11 +41,11 @@ struct Group {
 
 }  // namespace
 
-double plan_gap_m(const Eigen::Vector2d& lo_a, const Eigen::Vector2d& hi_a,
-                  const Eigen::Vector2d& lo_b, const Eigen::Vector2d& hi_b) {
+double plan_gap_squared_m2(const Eigen::Vector2d& lo_a, const Eigen::Vector2d& hi_a,
+                           const Eigen::Vector2d& lo_b, const Eigen::Vector2d& hi_b) {
   const double dx = std::max({0.0, lo_b.x() - hi_a.x(), lo_a.x() - hi_b.x()});
   const double dy = std::max({0.0, lo_b.y() - hi_a.y(), lo_a.y() - hi_b.y()});
-  return std::hypot(dx, dy);
+  return dx * dx + dy * dy;
 }
 
 void find_clusters(std::span<const ObstaclePoint> points, std::span<const std::uint8_t> skip,
@@ -126,7 +126,9 @@ void find_clusters(std::span<const ObstaclePoint> points, std::span<const std::u
       const Group& gb = groups[order[b]];
       if (gb.lo.x() > ga.hi.x() + widest) break;
       const double link = params.link_m + params.link_per_m * std::min(ga.range_m, gb.range_m);
-      if (plan_gap_m(ga.lo, ga.hi, gb.lo, gb.hi) <= link) join(parent, ga.cell, gb.cell);
+      if (plan_gap_squared_m2(ga.lo, ga.hi, gb.lo, gb.hi) <= link * link) {
+        join(parent, ga.cell, gb.cell);
+      }
     }
   }
   // Clusters: points of each final root, ordered by their first point.

@@ -28,8 +28,8 @@ void find_clusters(std::span<const ObstaclePoint> points, std::span<const std::u
                    const DetectorParams& params, ClusterScratch& scratch,
                    std::vector<PointCluster>& out);
 
-// The horizontal gap between two plan boxes (0 when they overlap).
-[[nodiscard]] double plan_gap_m(const Eigen::Vector2d& lo_a, const Eigen::Vector2d& hi_a,
+// The square of the horizontal gap between two plan boxes (0 when they overlap).
+[[nodiscard]] double plan_gap_squared_m2(const Eigen::Vector2d& lo_a, const Eigen::Vector2d& hi_a,
                                 const Eigen::Vector2d& lo_b, const Eigen::Vector2d& hi_b);
 
 }  // namespace owsim

@@ -55,6 +55,16 @@ class PlanNeighbours {
   std::vector<Entry> entries_;
 };
 
+// Whether a cluster of at least min_points points may hold a piece of a wire: 15 m long or more
+// (a tree's crown, a pole, a house are less), or at least 4 m and three times as long as it is
+// wide. Compact clusters are not searched for lines; smaller groups (a far wire's scattered hits)
+// always are.
+bool may_hold_a_wire(const PlanExtent& extent) {
+  constexpr double kCompactM = 15.0;
+  return extent.length_m >= kCompactM ||
+         (extent.length_m >= 4.0 && extent.length_m > 3.0 * extent.width_m);
+}
+
 double median_of(std::vector<double> values) {
   if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
   const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
@@ -161,9 +171,22 @@ std::span<const ObstacleWarning> ObstacleDetector::add_frame(const DetectorFrame
 void ObstacleDetector::classify(const Eigen::Vector3d& aircraft) {
   obstacles_.clear();
   const std::span<const ObstaclePoint> points(points_);
-  // 2. Wire candidates, and the other points' clusters (their "other objects").
-  find_wire_candidates(points, aircraft.head<2>(), params_, wire_scratch_, wires_);
+  // 2. Wire candidates among the points of clusters that may hold a wire (a tree, a pole or a
+  // house alone holds none: the Hough transform need not see the wood), then the other points'
+  // clusters (the wires' "other objects").
   std::vector<std::uint8_t> skip(points.size(), 0);
+  find_clusters(points, skip, params_, cluster_scratch_, clusters_);
+  std::vector<std::uint8_t> eligible(points.size(), 0);
+  std::vector<Eigen::Vector3d> member_at;
+  for (const PointCluster& cluster : clusters_) {
+    if (cluster.points.size() >= static_cast<std::size_t>(params_.min_points)) {
+      member_at.clear();
+      for (const std::uint32_t p : cluster.points) member_at.push_back(points[p].enu_m);
+      if (!may_hold_a_wire(plan_extent(member_at))) continue;
+    }
+    for (const std::uint32_t p : cluster.points) eligible[p] = 1;
+  }
+  find_wire_candidates(points, eligible, aircraft.head<2>(), params_, wire_scratch_, wires_);
   for (const WireCandidate& wire : wires_) {
     for (const std::uint32_t p : wire.points) skip[p] = 1;
   }
@@ -239,25 +262,28 @@ void ObstacleDetector::classify(const Eigen::Vector3d& aircraft) {
     const double ground = ground_under(points, cluster.points);
     const double base = lowest - ground <= params_.standing_within_m ? ground : lowest;
     shape.height_m = top - base;
-    shape.isolation_m = std::numeric_limits<double>::infinity();
+    double isolation_squared = std::numeric_limits<double>::infinity();
     for (std::size_t o = 0; o < solids.size(); ++o) {
       if (o == c) continue;
-      shape.isolation_m = std::min(
-          shape.isolation_m, plan_gap_m(boxes[c].lo, boxes[c].hi, boxes[o].lo, boxes[o].hi));
+      isolation_squared = std::min(isolation_squared, plan_gap_squared_m2(boxes[c].lo, boxes[c].hi,
+                                                                          boxes[o].lo, boxes[o].hi));
     }
     for (std::size_t w = 0; w < wires_.size(); ++w) {
       if (!accepted[w]) continue;
       for (const std::uint32_t p : wires_[w].points) {
-        const Eigen::Vector2d at = points[p].enu_m.head<2>();
-        shape.isolation_m = std::min(shape.isolation_m, plan_gap_m(boxes[c].lo, boxes[c].hi, at, at));
+        const Eigen::Vector2d wire_at = points[p].enu_m.head<2>();
+        isolation_squared = std::min(
+            isolation_squared, plan_gap_squared_m2(boxes[c].lo, boxes[c].hi, wire_at, wire_at));
       }
     }
+    shape.isolation_m = std::sqrt(isolation_squared);
     const ObstacleClass kind = solid_class(shape, params_);
     if (kind == ObstacleClass::none) continue;
     FrameObstacle obstacle;
     obstacle.kind = kind;
     obstacle.points = member_points;
     obstacle.base_u_m = base;
+    obstacle.isolation_m = shape.isolation_m;
     obstacles_.push_back(std::move(obstacle));
   }
 }

@@ -63,6 +63,7 @@ struct Pair {
 
 void ObstacleTracks::support(ObstacleTrack& track, const FrameObstacle& obstacle, double time_s) {
   track.kind = obstacle.kind;
+  track.isolation_m = obstacle.isolation_m;
   track.last_support_s = time_s;
   track.points_now = static_cast<std::uint32_t>(obstacle.points.size());
   track.base_u_m =
@@ -80,6 +81,18 @@ void ObstacleTracks::remember(ObstacleTrack& track, const Eigen::Vector3d& p) {
     track.hi = track.hi.cwiseMax(p);
   }
   track.remembered.push_back(p);
+}
+
+void ObstacleTracks::classify_remembered(ObstacleTrack& track) const {
+  if (is_wire(track.kind) || track.remembered.empty()) return;
+  const PlanExtent extent = plan_extent(track.remembered);
+  ObstacleShape shape;
+  shape.length_m = extent.length_m;
+  shape.width_m = extent.width_m;
+  shape.height_m = track.hi.z() - track.base_u_m;
+  shape.isolation_m = track.isolation_m;
+  const ObstacleClass kind = solid_class(shape, params_);
+  if (kind != ObstacleClass::none) track.kind = kind;
 }
 
 void ObstacleTracks::update(std::span<const FrameObstacle> obstacles, double time_s,
@@ -157,6 +170,9 @@ void ObstacleTracks::update(std::span<const FrameObstacle> obstacles, double tim
     tracks_.push_back(std::move(track));
   }
   absorbed.resize(tracks_.size(), 0);  // the new tracks are kept
+  for (std::size_t t = 0; t < tracks_.size(); ++t) {
+    if (!absorbed[t] && tracks_[t].points_now > 0) classify_remembered(tracks_[t]);
+  }
   std::size_t kept = 0;
   for (std::size_t t = 0; t < tracks_.size(); ++t) {
     if (absorbed[t] || time_s - tracks_[t].last_support_s > params_.hold_s) continue;

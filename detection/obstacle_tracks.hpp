@@ -8,6 +8,9 @@
 // kMaxRememberedPoints): its extent never shrinks when part of it leaves the field or the window.
 // Tracks that one obstacle continues at once (pieces of it seen apart before) become one, with the
 // oldest id.
+// A solid track's class is the rules' verdict on what it has shown (its remembered extent, its
+// lowest base, its latest isolation), so a warning's class holds for the size it reports; the
+// frame's own class stands only where the remembered shape fits no class.
 // It reports in every frame until hold_s has passed without support.
 #include <Eigen/Core>
 #include <cstdint>
@@ -27,6 +30,7 @@ struct FrameObstacle {
   ObstacleClass kind = ObstacleClass::none;
   std::vector<Eigen::Vector3d> points;
   double base_u_m = 0.0;  // where its visible height starts: the ground it stands on, or its foot
+  double isolation_m = 0.0;  // a solid's: horizontal distance to the nearest other object
 };
 
 struct ObstacleTrack {
@@ -35,6 +39,7 @@ struct ObstacleTrack {
   double last_support_s = 0.0;
   std::uint32_t points_now = 0;  // the points supporting it this frame (0: held)
   double base_u_m = 0.0;         // the lowest base it has shown (FrameObstacle::base_u_m)
+  double isolation_m = 0.0;      // its latest obstacle's
   std::vector<Eigen::Vector3d> remembered;
   std::unordered_set<std::uint64_t> voxels;  // of `remembered`
   Eigen::Vector3d lo = Eigen::Vector3d::Zero(), hi = Eigen::Vector3d::Zero();  // box
@@ -54,6 +59,7 @@ class ObstacleTracks {
  private:
   void support(ObstacleTrack& track, const FrameObstacle& obstacle, double time_s);
   static void remember(ObstacleTrack& track, const Eigen::Vector3d& p);
+  void classify_remembered(ObstacleTrack& track) const;
 
   DetectorParams params_;
   std::vector<ObstacleTrack> tracks_;

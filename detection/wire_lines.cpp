@@ -108,7 +108,8 @@ double median_of(std::vector<double>& values) {
 
 }  // namespace
 
-void find_wire_candidates(std::span<const ObstaclePoint> points, const Eigen::Vector2d& aircraft_en,
+void find_wire_candidates(std::span<const ObstaclePoint> points,
+                          std::span<const std::uint8_t> eligible, const Eigen::Vector2d& aircraft_en,
                           const DetectorParams& params, WireSearchScratch& scratch,
                           std::vector<WireCandidate>& out) {
   out.clear();
@@ -116,12 +117,16 @@ void find_wire_candidates(std::span<const ObstaclePoint> points, const Eigen::Ve
   const auto& table = directions();
   const int offsets = 2 * static_cast<int>(std::ceil(params.max_range_m / kOffsetBinM)) + 3;
   const double offset_zero = offsets / 2 * kOffsetBinM;
-  scratch.votes.assign(static_cast<std::size_t>(kDirections) * offsets, 0);
+  const std::size_t bins = static_cast<std::size_t>(kDirections) * offsets;
+  if (scratch.votes.size() != bins) scratch.votes.assign(bins, 0);
+  scratch.touched.clear();
+  scratch.full.clear();
+  const auto least = static_cast<std::uint16_t>(params.min_points);
 
   // 1. One vote per occupied plan cell and direction.
   scratch.cells.clear();
   for (std::uint32_t p = 0; p < points.size(); ++p) {
-    scratch.cells.push_back(cell_key(points[p].enu_m.x(), points[p].enu_m.y()));
+    if (eligible[p]) scratch.cells.push_back(cell_key(points[p].enu_m.x(), points[p].enu_m.y()));
   }
   std::sort(scratch.cells.begin(), scratch.cells.end());
   scratch.cells.erase(std::unique(scratch.cells.begin(), scratch.cells.end()), scratch.cells.end());
@@ -137,33 +142,33 @@ void find_wire_candidates(std::span<const ObstaclePoint> points, const Eigen::Ve
       const int bin = static_cast<int>(std::floor((x * d.cos_t + y * d.sin_t + offset_zero) /
                                                   kOffsetBinM));
       if (bin < 0 || bin >= offsets) continue;
-      std::uint16_t& v = scratch.votes[static_cast<std::size_t>(k) * offsets + bin];
+      const auto at = static_cast<std::uint32_t>(k * offsets + bin);
+      std::uint16_t& v = scratch.votes[at];
+      if (v == 0) scratch.touched.push_back(at);
       if (v < UINT16_MAX) ++v;
+      if (v == least) scratch.full.push_back(at);
     }
   }
 
   // 2. Peaks: local maxima (ties to the lower bin) with at least min_points votes.
   std::vector<Peak> peaks;
-  const auto least = static_cast<std::uint16_t>(params.min_points);
-  for (int k = 0; k < kDirections; ++k) {
-    for (int b = 0; b < offsets; ++b) {
-      const std::size_t at = static_cast<std::size_t>(k) * offsets + b;
-      const std::uint16_t v = scratch.votes[at];
-      if (v < least) continue;
-      bool peak = true;
-      for (int dk = -1; dk <= 1 && peak; ++dk) {
-        for (int db = -1; db <= 1 && peak; ++db) {
-          if (dk == 0 && db == 0) continue;
-          const int kk = k + dk, bb = b + db;
-          if (kk < 0 || kk >= kDirections || bb < 0 || bb >= offsets) continue;
-          const std::size_t other = static_cast<std::size_t>(kk) * offsets + bb;
-          const std::uint16_t w = scratch.votes[other];
-          if (w > v || (w == v && other < at)) peak = false;
-        }
+  for (const std::uint32_t at : scratch.full) {
+    const int k = static_cast<int>(at) / offsets, b = static_cast<int>(at) % offsets;
+    const std::uint16_t v = scratch.votes[at];
+    bool peak = true;
+    for (int dk = -1; dk <= 1 && peak; ++dk) {
+      for (int db = -1; db <= 1 && peak; ++db) {
+        if (dk == 0 && db == 0) continue;
+        const int kk = k + dk, bb = b + db;
+        if (kk < 0 || kk >= kDirections || bb < 0 || bb >= offsets) continue;
+        const auto other = static_cast<std::uint32_t>(kk * offsets + bb);
+        const std::uint16_t w = scratch.votes[other];
+        if (w > v || (w == v && other < at)) peak = false;
       }
-      if (peak) peaks.push_back({v, static_cast<std::uint32_t>(at)});
     }
+    if (peak) peaks.push_back({v, at});
   }
+  for (const std::uint32_t at : scratch.touched) scratch.votes[at] = 0;
   std::sort(peaks.begin(), peaks.end(), [](const Peak& a, const Peak& b) {
     return a.votes != b.votes ? a.votes > b.votes : a.bin < b.bin;
   });
@@ -171,6 +176,7 @@ void find_wire_candidates(std::span<const ObstaclePoint> points, const Eigen::Ve
 
   // 3–4. Each peak's points, chained along its line.
   scratch.taken.assign(points.size(), 0);
+  for (std::uint32_t p = 0; p < points.size(); ++p) scratch.taken[p] = eligible[p] ? 0 : 1;
   std::vector<Chain> chains;
   for (const Peak& peak : peaks) {
     const auto k = static_cast<std::size_t>(peak.bin / static_cast<std::uint32_t>(offsets));

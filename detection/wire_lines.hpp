@@ -41,15 +41,19 @@ struct WireCandidate {
 
 // Reused buffers of find_wire_candidates: it allocates only while they grow.
 struct WireSearchScratch {
-  std::vector<std::uint16_t> votes;
+  std::vector<std::uint16_t> votes;    // all zero between calls
+  std::vector<std::uint32_t> touched;  // the bins a call voted in, to zero them again
+  std::vector<std::uint32_t> full;     // the bins that reached min_points votes
   std::vector<std::uint64_t> cells;  // (plan cell key, point index) sorted
   std::vector<std::uint8_t> taken;
   std::vector<std::uint32_t> inliers;
   std::vector<double> offsets;
 };
 
-// The wire candidates among `points`, around the aircraft's plan position `aircraft_en`.
-void find_wire_candidates(std::span<const ObstaclePoint> points, const Eigen::Vector2d& aircraft_en,
+// The wire candidates among the `points` with `eligible[p] != 0` (the others neither vote nor join
+// a line), around the aircraft's plan position `aircraft_en`.
+void find_wire_candidates(std::span<const ObstaclePoint> points,
+                          std::span<const std::uint8_t> eligible, const Eigen::Vector2d& aircraft_en,
                           const DetectorParams& params, WireSearchScratch& scratch,
                           std::vector<WireCandidate>& out);
 
