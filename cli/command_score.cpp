@@ -39,6 +39,18 @@ void run_score(ScoreCommandOptions& options) {
                    : 0.0,
                of_class.interval.lower, of_class.interval.upper);
   }
+  if (report.object_confusion.empty()) return;
+  // Objects in view by their class and the class they were warned as.
+  fmt::print(stderr, "  objects in view, warned as:");
+  for (const auto& [warned, count] : report.object_confusion.begin()->second) {
+    fmt::print(stderr, " {:>6}", warned);
+  }
+  fmt::print(stderr, "\n");
+  for (const auto& [truth, row] : report.object_confusion) {
+    fmt::print(stderr, "  {:>24}:", truth);
+    for (const auto& [warned, count] : row) fmt::print(stderr, " {:>6}", count);
+    fmt::print(stderr, "\n");
+  }
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <unordered_map>
 
@@ -33,6 +34,35 @@ struct FlightScore {
   double hours = 0.0;
 };
 
+// The class most detections of an object gave: ties to wire, pole, tree, then the first by name.
+std::string warned_class(const std::map<std::string, std::uint64_t>& classes) {
+  const auto rank = [](const std::string& name) {
+    return name == "wire" ? 0 : name == "pole" ? 1 : name == "tree" ? 2 : 3;
+  };
+  const std::pair<const std::string, std::uint64_t>* best = nullptr;
+  for (const auto& entry : classes) {
+    if (best == nullptr || entry.second > best->second ||
+        (entry.second == best->second && rank(entry.first) < rank(best->first))) {
+      best = &entry;
+    }
+  }
+  return best == nullptr ? "none" : best->first;
+}
+
+nlohmann::json warning_time_json(const std::vector<double>& times) {
+  if (times.empty()) {
+    return {{"objects", 0}, {"min_s", nullptr}, {"median_s", nullptr}, {"mean_s", nullptr}};
+  }
+  double sum = 0.0;
+  for (const double t : times) sum += t;
+  const std::size_t n = times.size();
+  const double median = n % 2 == 1 ? times[n / 2] : 0.5 * (times[n / 2 - 1] + times[n / 2]);
+  return {{"objects", n},
+          {"min_s", times.front()},
+          {"median_s", median},
+          {"mean_s", sum / static_cast<double>(n)}};
+}
+
 FlightScore score_flight(const CampaignFlight& flight, const std::filesystem::path& detections,
                          const ScoreOptions& options, ScoreReport& report, std::string& rows) {
   const std::filesystem::path scenario_file = flight.directory / "scenario.yaml";
@@ -61,6 +91,7 @@ FlightScore score_flight(const CampaignFlight& flight, const std::filesystem::pa
     index_of.emplace(named_object_id(scene, object), object);
   }
   std::vector<std::optional<double>> first_hit_s(count);
+  std::vector<std::map<std::string, std::uint64_t>> hit_classes(count);
   std::vector<std::uint32_t> candidates;
   const DetectionFlight flown{frame, scenario.scan.start_s,
                               scenario.scan.start_s + facts.flight_s()};
@@ -82,6 +113,7 @@ FlightScore score_flight(const CampaignFlight& flight, const std::filesystem::pa
     if (hit) {
       std::optional<double>& first = first_hit_s[*hit];
       if (!first || detection.time_s < *first) first = detection.time_s;
+      if (!detection.object_class.empty()) ++hit_classes[*hit][detection.object_class];
     } else {
       ++score.false_alarms;
     }
@@ -133,6 +165,7 @@ FlightScore score_flight(const CampaignFlight& flight, const std::filesystem::pa
           sensor_placement(trajectory.pose_at(*first), scenario.mount, scenario.scan.model);
       out.first_detection_range_m = distance_to_object_m(scene, object, placement.origin_enu_m);
       if (closest_s) out.warning_time_s = *closest_s - *first;
+      out.warned_class = warned_class(hit_classes[object]);
     }
     return out;
   };
@@ -170,6 +203,7 @@ nlohmann::json score_json(const ScoreReport& report, const ScoreOptions& options
                             {"class", object.object_class},
                             {"in_view", object.in_view},
                             {"detected", object.detected},
+                            {"warned_class", object.warned_class},
                             {"first_detection_s", nullptr},
                             {"first_detection_range_m", nullptr},
                             {"warning_time_s", nullptr}};
@@ -194,6 +228,7 @@ nlohmann::json score_json(const ScoreReport& report, const ScoreOptions& options
       by_range.push_back(std::move(row));
     }
     entry["pd_by_range"] = std::move(by_range);
+    entry["warning_time"] = warning_time_json(score.warning_times_s);
     by_class[name] = std::move(entry);
   }
   return {{"flights", report.flights},
@@ -209,6 +244,7 @@ nlohmann::json score_json(const ScoreReport& report, const ScoreOptions& options
                : nlohmann::json(nullptr)},
           {"by_class", by_class},
           {"confusion", report.confusion},
+          {"object_confusion", report.object_confusion},
           {"objects", objects},
           {"definitions", "docs/evidence.md (owsim " + std::string(version_string) + ")"}};
 }
@@ -255,14 +291,35 @@ ScoreReport write_score_report(const ScoreOptions& options) {
         ClassScore& of_class = report.by_class[object.object_class];
         ++of_class.objects;
         if (object.detected) ++of_class.detected;
+        if (object.warning_time_s) of_class.warning_times_s.push_back(*object.warning_time_s);
+        ++report.object_confusion[object.object_class][object.warned_class];
+        // A detection in the frame the object came into view lies at the frame's start, a few
+        // metres farther than the truth's range at the frame's middle: no farther than it was seen.
         trials[object.object_class].push_back(
             {object.farthest_in_view_m,
-             object.detected ? std::optional(object.first_detection_range_m) : std::nullopt});
+             object.detected ? std::optional(std::min(object.first_detection_range_m,
+                                                      object.farthest_in_view_m))
+                             : std::nullopt});
       }
       report.objects.push_back(std::move(object));
     }
   }
+  // Detections without classes warn of nothing in particular: no object table.
+  if (report.confusion.empty()) report.object_confusion.clear();
+  // Every row of the object table has every column: the reference classes and any other named.
+  std::vector<std::string> columns = {"wire", "pole", "tree", "none"};
+  for (const auto& [truth, row] : report.object_confusion) {
+    for (const auto& [warned, objects] : row) {
+      if (std::find(columns.begin(), columns.end(), warned) == columns.end()) {
+        columns.push_back(warned);
+      }
+    }
+  }
+  for (auto& [truth, row] : report.object_confusion) {
+    for (const std::string& column : columns) row.try_emplace(column, 0);
+  }
   for (auto& [name, score] : report.by_class) {
+    std::sort(score.warning_times_s.begin(), score.warning_times_s.end());
     score.interval = clopper_pearson(score.detected, score.objects, options.confidence);
     score.by_range = empty_bins(options.bins);
     add_trials(trials[name], score.by_range);

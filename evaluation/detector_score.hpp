@@ -36,11 +36,15 @@ struct ScoredObject {
   double first_detection_range_m = 0.0;
   std::optional<double> warning_time_s;  // closest approach − first detection
   double farthest_in_view_m = 0.0;
+  // The class most of the detections that hit it gave (ties: wire, pole, tree, then by name);
+  // "none" when none hit it or none gave a class. The object confusion table's column.
+  std::string warned_class = "none";
 };
 
 struct ClassScore {
   std::uint64_t objects = 0;   // in view
   std::uint64_t detected = 0;  // of those
+  std::vector<double> warning_times_s;  // of those detected with a closest approach, ascending
   ProportionInterval interval;
   std::vector<PdBin> by_range;  // cumulative Pd versus range (the bins' trial counts)
 };
@@ -55,6 +59,10 @@ struct ScoreReport {
   std::map<std::string, ClassScore> by_class;
   // true class ("none" for a false alarm) → reported class → detections; empty without classes.
   std::map<std::string, std::map<std::string, std::uint64_t>> confusion;
+  // Objects in view: true class → warned class (ScoredObject::warned_class, "none" when never
+  // warned) → objects. Every class of object in view has a row, with every column the detections
+  // or the reference classes (wire, pole, tree, none) name. Empty when the detections give no class.
+  std::map<std::string, std::map<std::string, std::uint64_t>> object_confusion;
 };
 
 // Scores the detections and writes score.json and score.csv. Throws owsim::Error naming the file,
