@@ -21,16 +21,24 @@ void GroundMap::add(double e, double n, double u) {
   const auto i = static_cast<std::int64_t>(std::floor(e / cell_m_));
   const auto j = static_cast<std::int64_t>(std::floor(n / cell_m_));
   ++version_;
+  constexpr double kNone = std::numeric_limits<double>::infinity();
   Cell& cell = cells_[slot(i, j)];
   if (cell.i != i || cell.j != j) {
-    cell = Cell{i, j, u, std::numeric_limits<double>::infinity()};
-    return;
+    cell = Cell{i, j};
+    cell.lowest.fill(kNone);
+    cell.ground = kNone;
   }
-  if (u < cell.lowest) {
-    cell.second = cell.lowest;
-    cell.lowest = u;
-  } else if (u < cell.second) {
-    cell.second = u;
+  if (!(u < cell.lowest.back())) return;
+  // Insert u among the kept lowest, then the lowest pair that agrees.
+  std::size_t k = kKept - 1;
+  for (; k > 0 && cell.lowest[k - 1] > u; --k) cell.lowest[k] = cell.lowest[k - 1];
+  cell.lowest[k] = u;
+  cell.ground = kNone;
+  for (std::size_t a = 0; a + 1 < kKept; ++a) {
+    if (cell.lowest[a + 1] - cell.lowest[a] <= kAgreeM) {
+      cell.ground = cell.lowest[a + 1];
+      break;
+    }
   }
 }
 
@@ -44,7 +52,7 @@ double GroundMap::ground_u(double e, double n) const {
   for (std::int64_t di = -1; di <= 1; ++di) {
     for (std::int64_t dj = -1; dj <= 1; ++dj) {
       const Cell& cell = cells_[slot(i + di, j + dj)];
-      if (cell.i == i + di && cell.j == j + dj) lowest = std::min(lowest, cell.second);
+      if (cell.i == i + di && cell.j == j + dj) lowest = std::min(lowest, cell.ground);
     }
   }
   const double ground = std::isinf(lowest) ? std::numeric_limits<double>::quiet_NaN() : lowest;

@@ -1,13 +1,15 @@
 #pragma once
 // The visible ground (DETECTION-SPEC §2 Decision): the lowest surface the sensor has seen there,
 // estimated from the returns alone, never from the scene's terrain. The local frame is cut into
-// square cells; each cell keeps the two lowest returns ever seen in it and takes the higher of
-// them as its ground — one false return (SENSOR-SPEC §11: the receiver triggers on noise at any
-// range, below the ground too) does not sink it, while a surface seen twice does — and the ground
-// under a point is the lowest of the 3×3 cells around it that have a ground (so a pole's or a
-// tree's own cell does not hide the ground beside it). The cells live in a fixed toroidal table that covers a square of at least
-// 2 × reach metres, so memory stays flat over hours of flight; a cell farther than that from where
-// the aircraft now looks is forgotten when a new one takes its slot.
+// square cells; each cell keeps the kKept lowest returns ever seen in it and takes as its ground
+// the lowest pair of them that agree within kAgreeM (the higher of the two): the receiver's false
+// returns (SENSOR-SPEC §11: it triggers on noise at any range, beyond the ground too, so below it)
+// are scattered in range and almost never agree, while a surface seen twice does. The ground under
+// a point is the lowest of the 3×3 cells around it that have a ground (so a pole's or a tree's own
+// cell does not hide the ground beside it). The cells live in a fixed toroidal table that covers a
+// square of at least 2 × reach metres, so memory stays flat over hours of flight; a cell farther
+// than that from where the aircraft now looks is forgotten when a new one takes its slot.
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -15,6 +17,9 @@ namespace owsim {
 
 class GroundMap {
  public:
+  static constexpr std::size_t kKept = 4;  // lowest returns a cell keeps
+  static constexpr double kAgreeM = 1.0;   // two of them agreeing make its ground
+
   // Cells of `cell_m` metres over a table reaching at least `reach_m` each way.
   GroundMap(double cell_m, double reach_m);
 
@@ -29,8 +34,8 @@ class GroundMap {
   struct Cell {
     std::int64_t i = INT64_MIN;
     std::int64_t j = INT64_MIN;
-    double lowest = 0.0;
-    double second = 0.0;  // +inf until a second return
+    std::array<double, kKept> lowest{};  // ascending, +inf where fewer returns
+    double ground = 0.0;                 // the lowest agreeing pair's higher; +inf: none yet
     // ground_u of this cell as of `version`.
     mutable double around = 0.0;
     mutable std::uint64_t around_version = 0;

@@ -69,15 +69,24 @@ TEST(ObstacleRules, PlanExtentOfARotatedRectangle) {
   EXPECT_NEAR(std::abs(extent.axis.dot(Eigen::Vector2d(std::cos(t), std::sin(t)))), 1.0, 1e-4);
 }
 
-TEST(GroundMap, TheSecondLowestReturnOfACellIsItsGround) {
+TEST(GroundMap, TheLowestPairOfAgreeingReturnsOfACellIsItsGround) {
   GroundMap ground(5.0, 1500.0);
   EXPECT_TRUE(std::isnan(ground.ground_u(1.0, 1.0)));
   ground.add(1.0, 1.0, -400.0);  // a false return below the ground: alone, no ground
   EXPECT_TRUE(std::isnan(ground.ground_u(1.0, 1.0)));
-  ground.add(2.0, 2.0, 3.0);
+  ground.add(2.0, 2.0, 3.0);  // two that disagree by more than kAgreeM: still none
+  EXPECT_TRUE(std::isnan(ground.ground_u(1.0, 1.0)));
+  ground.add(2.0, 2.0, 2.5);  // a surface seen twice: the higher of the pair
   EXPECT_EQ(ground.ground_u(1.0, 1.0), 3.0);
-  ground.add(3.0, 3.0, 1.0);
+  ground.add(3.0, 3.0, 1.0);  // 1.0 agrees with nothing kept
+  EXPECT_EQ(ground.ground_u(1.0, 1.0), 3.0);
+  ground.add(3.0, 3.0, 0.8);
   EXPECT_EQ(ground.ground_u(1.0, 1.0), 1.0);
+  // Two more false returns far below, each alone: the ground stays (kKept = 4 lowest kept).
+  ground.add(3.0, 3.0, -30.0);
+  EXPECT_EQ(ground.ground_u(1.0, 1.0), 1.0);
+  ground.add(3.0, 3.0, -55.0);  // the kept: −400, −55, −30, 0.8: 1.0 is no longer among them
+  EXPECT_TRUE(std::isnan(ground.ground_u(1.0, 1.0)));
   // The 3×3 cells around: a neighbour's lower ground counts, one two cells away does not.
   ground.add(7.0, 1.0, 0.5);
   ground.add(7.5, 1.5, 0.25);
