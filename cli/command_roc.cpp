@@ -8,6 +8,7 @@
 #include <string>
 
 #include "cli/commands.hpp"
+#include "cli/warning_options.hpp"
 #include "evaluation/roc_report.hpp"
 
 namespace owsim::cli {
@@ -19,6 +20,7 @@ struct RocCommandOptions {
   std::string target_class;
   std::string range = "700:800";
   std::filesystem::path out;
+  std::filesystem::path detections;
   bool quiet = false;
 };
 
@@ -28,6 +30,7 @@ void run_roc(RocCommandOptions& options) {
   if (!options.target_class.empty()) roc.target.object_class = options.target_class;
   parse_roc_range(options.range, roc);
   if (!options.out.empty()) roc.out = options.out;
+  if (!options.detections.empty()) roc.detections = options.detections;
   const RocReport report = write_roc_report(roc);
   if (options.quiet) return;
   fmt::print(stderr,
@@ -41,8 +44,14 @@ void run_roc(RocCommandOptions& options) {
                   "Pd within {} s {:.4f} [{:.4f}, {:.4f}] over {} windows", roc.criterion.window_s,
                   static_cast<double>(row.windows_detected) / static_cast<double>(row.windows),
                   row.window_interval.lower, row.window_interval.upper, row.windows);
-    fmt::print(stderr, "  {} = {}: {}; {:.4g} false returns/s\n", roc.by, row.value, pd,
-               row.false_returns.per_s());
+    if (row.warnings) {
+      fmt::print(stderr, "  {} = {}: {}; {} false warnings, {:.4g} per flight hour\n", roc.by,
+                 row.value, pd, row.warnings->false_warnings,
+                 row.warnings->false_warnings_per_hour());
+    } else {
+      fmt::print(stderr, "  {} = {}: {}; {:.4g} false returns/s\n", roc.by, row.value, pd,
+                 row.false_returns.per_s());
+    }
   }
 }
 
@@ -73,6 +82,7 @@ void add_roc_command(CLI::App& app, CommandResult& /*result*/) {
                       "two-sided confidence of the intervals (default 0.95)");
   command->add_option("--out", options->out,
                       "where roc.csv, roc.json and roc.svg go (default DIR)");
+  add_warning_options(command, options->detections, options->roc.gate_m);
   command->add_flag("--quiet", options->quiet, "print nothing on success");
   command->callback([options] { run_roc(*options); });
 }

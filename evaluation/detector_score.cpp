@@ -7,16 +7,14 @@
 #include <nlohmann/json.hpp>
 #include <unordered_map>
 
+#include "evaluation/detection_match.hpp"
 #include "evaluation/detections_csv.hpp"
 #include "evaluation/object_distance.hpp"
-#include "evaluation/object_grid.hpp"
 #include "evaluation/truth_table.hpp"
 #include "geometry/error.hpp"
 #include "io/files/atomic_output_file.hpp"
 #include "io/files/csv_cells.hpp"
 #include "io/files/json_text.hpp"
-#include "io/scenario/scenario_loader.hpp"
-#include "io/scenario/scene_builder.hpp"
 #include "io/trajectory/trajectory_loader.hpp"
 #include "owsim/version.hpp"
 
@@ -65,18 +63,12 @@ nlohmann::json warning_time_json(const std::vector<double>& times) {
 
 FlightScore score_flight(const CampaignFlight& flight, const std::filesystem::path& detections,
                          const ScoreOptions& options, ScoreReport& report, std::string& rows) {
-  const std::filesystem::path scenario_file = flight.directory / "scenario.yaml";
-  std::error_code error;
-  if (!std::filesystem::exists(scenario_file, error)) {
-    throw input_error(scenario_file.string(),
-                      "missing: score needs the scenario the run flew (runs of this owsim write "
-                      "it)");
-  }
-  const Scenario scenario = load_scenario(scenario_file);
-  const LocalFrame frame(scenario.origin);
-  const Scene scene = build_scene(scenario);
+  const FlownScene flown_scene = load_flown_scene(flight);
+  const Scenario& scenario = flown_scene.scenario;
+  const LocalFrame& frame = flown_scene.frame;
+  const Scene& scene = flown_scene.scene;
   const Trajectory trajectory = load_trajectory(scenario, frame);
-  const ObjectGrid grid(scene);
+  DetectionMatcher matcher(scene, options.gate_m);
   const FlightFacts facts = read_flight_facts(flight.directory / "summary.json");
   const std::vector<ObjectTrack> tracks =
       read_truth_csv(flight.directory / "truth.csv", facts,
@@ -92,22 +84,14 @@ FlightScore score_flight(const CampaignFlight& flight, const std::filesystem::pa
   }
   std::vector<std::optional<double>> first_hit_s(count);
   std::vector<std::map<std::string, std::uint64_t>> hit_classes(count);
-  std::vector<std::uint32_t> candidates;
   const DetectionFlight flown{frame, scenario.scan.start_s,
                               scenario.scan.start_s + facts.flight_s()};
   read_detections_csv(detections, flown, [&](const Detection& detection) {
     ++score.detections;
-    candidates.clear();
-    grid.objects_near(detection.enu_m.x(), detection.enu_m.y(), options.gate_m, candidates);
-    std::optional<std::uint32_t> hit;
-    double hit_distance = std::numeric_limits<double>::infinity();
-    for (const std::uint32_t object : candidates) {
-      const double distance = distance_to_object_m(scene, object, detection.enu_m);
-      if (distance <= options.gate_m && distance < hit_distance) {
-        hit = object;
-        hit_distance = distance;
-      }
-    }
+    const std::optional<ObjectHit> found = matcher.hit(detection.enu_m);
+    const std::optional<std::uint32_t> hit =
+        found ? std::optional(found->object) : std::nullopt;
+    const double hit_distance = found ? found->distance_m : 0.0;
     const std::string true_class =
         hit ? std::string(to_string(named_object_class(scene, *hit))) : std::string("none");
     if (hit) {
@@ -173,7 +157,8 @@ FlightScore score_flight(const CampaignFlight& flight, const std::filesystem::pa
     const auto found_index = index_of.find(track.id);
     if (found_index == index_of.end()) {
       throw input_error((flight.directory / "truth.csv").string(),
-                        "object '" + track.id + "' is not in " + scenario_file.string());
+                        "object '" + track.id + "' is not in " +
+                            (flight.directory / "scenario.yaml").string());
     }
     listed[found_index->second] = true;
     score.objects.push_back(scored(found_index->second, &track));
@@ -266,22 +251,15 @@ ScoreReport write_score_report(const ScoreOptions& options) {
   report.directory = options.out ? *options.out : options.folder;
   const std::vector<CampaignFlight> flights = campaign_flights(options.folder);
   report.flights = flights.size();
-  const bool sweep = std::filesystem::is_regular_file(options.folder / "sweep.csv");
+  const std::vector<std::filesystem::path> files =
+      detections_files(options.folder, flights, options.detections);
   std::error_code error;
-  if (sweep != std::filesystem::is_directory(options.detections, error)) {
-    throw input_error("--detections",
-                      sweep ? "a sweep folder is scored from a folder of <member>.csv files"
-                            : "a run folder is scored from one detections file");
-  }
   std::string rows(kScoreCsvHeader);
   rows += '\n';
   std::map<std::string, std::vector<Trial>> trials;
-  for (const CampaignFlight& flight : flights) {
-    const std::filesystem::path file =
-        sweep ? options.detections / (flight.name + ".csv") : options.detections;
-    if (sweep && !std::filesystem::exists(file, error)) {
-      throw input_error(file.string(), "missing: no detections file for member " + flight.name);
-    }
+  for (std::size_t f = 0; f < flights.size(); ++f) {
+    const CampaignFlight& flight = flights[f];
+    const std::filesystem::path& file = files[f];
     FlightScore score = score_flight(flight, file, options, report, rows);
     report.detections += score.detections;
     report.false_alarms += score.false_alarms;

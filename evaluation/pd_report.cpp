@@ -96,6 +96,20 @@ nlohmann::json pd_json(const PdReport& report, const PdOptions& options) {
       {"definitions", "docs/evidence.md (owsim " + std::string(version_string) + ")"}};
 }
 
+nlohmann::json pd_json_with_warnings(const PdReport& report, const PdOptions& options) {
+  nlohmann::json out = pd_json(report, options);
+  if (!report.warnings) return out;
+  const WarningTally& tally = *report.warnings;
+  out["evidence"] = "warnings";
+  out["gate_m"] = options.gate_m;
+  out["warning_rows"] = tally.rows;
+  out["warning_tracks"] = tally.tracks;
+  out["false_warnings"] = tally.false_warnings;
+  out["flight_hours"] = tally.hours;
+  out["false_warnings_per_hour"] = tally.false_warnings_per_hour();
+  return out;
+}
+
 // The curves with their bands: x range, y probability.
 std::string pd_svg(const PdReport& report, const PdOptions& options) {
   constexpr double kWidth = 760, kHeight = 480, kLeft = 70, kRight = 20, kTop = 50, kBottom = 100;
@@ -115,8 +129,9 @@ std::string pd_svg(const PdReport& report, const PdOptions& options) {
       "viewBox=\"0 0 %g %g\" font-family=\"sans-serif\" font-size=\"12\">\n",
       kWidth, kHeight, kWidth, kHeight);
   add("<rect width=\"%g\" height=\"%g\" fill=\"white\"/>\n", kWidth, kHeight);
-  std::string title = "P(detect) of " + report.target + ": ≥ " +
-                      std::to_string(options.criterion.returns) + " return(s) within " +
+  std::string title = std::string(report.warnings ? "P(warn) of " : "P(detect) of ") +
+                      report.target + ": ≥ " + std::to_string(options.criterion.returns) +
+                      (report.warnings ? " warned frame(s) within " : " return(s) within ") +
                       probability_key(options.criterion.window_s) + " s, " +
                       probability_key(options.confidence * 100.0) + " % Clopper–Pearson bands";
   std::string escaped;
@@ -228,21 +243,35 @@ PdReport pd_report_of(std::span<const FlightTracks> flights, const PdOptions& op
 
 std::vector<ReportFile> pd_report_files(const PdReport& report, const PdOptions& options) {
   return {{"pd.csv", pd_csv(report.target, report.curve)},
-          {"pd.json", json_text(pd_json(report, options), 2) + "\n"},
+          {"pd.json", json_text(pd_json_with_warnings(report, options), 2) + "\n"},
           {"pd.svg", pd_svg(report, options)}};
 }
 
-PdReport write_pd_report(const PdOptions& options) {
+std::vector<FlightTracks> read_pd_flights(const PdOptions& options,
+                                          std::optional<WarningTally>& tally) {
   validate(options.criterion, options.bins, options.confidence);
   const PdTarget target{options.target_id, options.target_class};
   validate(target);
+  const std::vector<CampaignFlight> flights = campaign_flights(options.folder);
   // Every flight's tracks are kept until the curve is made: a target's rows are a few per frame.
   std::vector<FlightTracks> tracks;
-  for (const CampaignFlight& folder : campaign_flights(options.folder)) {
-    tracks.push_back(read_target_tracks(folder, target));
+  for (const CampaignFlight& flight : flights) tracks.push_back(read_target_tracks(flight, target));
+  if (options.detections) {
+    tally.emplace();
+    for (const WarningTally& flight : count_flights_warnings(options.folder, flights, tracks,
+                                                             *options.detections, options.gate_m)) {
+      *tally += flight;
+    }
   }
   require_target_found(target, tracks, options.folder);
+  return tracks;
+}
+
+PdReport write_pd_report(const PdOptions& options) {
+  std::optional<WarningTally> tally;
+  const std::vector<FlightTracks> tracks = read_pd_flights(options, tally);
   PdReport report = pd_report_of(tracks, options);
+  report.warnings = tally;
   report.directory = options.out ? *options.out : options.folder;
   write_report_files(report.directory, pd_report_files(report, options));
   return report;

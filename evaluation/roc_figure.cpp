@@ -38,7 +38,7 @@ std::string short_number(double value) {
 
 struct Point {
   const RocRow* row;
-  double rate;  // false returns per second
+  double rate;  // false returns per second (--detections: false warnings per flight hour)
   double pd;
 };
 
@@ -61,7 +61,8 @@ std::pair<int, int> decades(const std::vector<Point>& points) {
 std::string roc_svg(const RocReport& report, const RocOptions& options) {
   std::vector<Point> points;
   for (const RocRow& row : report.rows) {
-    const double rate = row.false_returns.per_s();
+    const double rate =
+        row.warnings ? row.warnings->false_warnings_per_hour() : row.false_returns.per_s();
     if (row.windows == 0 || !std::isfinite(rate)) continue;
     points.push_back(
         {&row, rate, static_cast<double>(row.windows_detected) / static_cast<double>(row.windows)});
@@ -91,9 +92,11 @@ std::string roc_svg(const RocReport& report, const RocOptions& options) {
       "viewBox=\"0 0 %g %g\" font-family=\"sans-serif\" font-size=\"12\">\n",
       kWidth, kHeight, kWidth, kHeight);
   add("<rect width=\"%g\" height=\"%g\" fill=\"white\"/>\n", kWidth, kHeight);
-  const std::string title = "Pd of " + report.target + " at " + short_number(options.range_lo_m) +
-                            "–" + short_number(options.range_hi_m) + " m: ≥ " +
-                            std::to_string(options.criterion.returns) + " return(s) within " +
+  const std::string title = (options.detections ? "Warning Pd of " : "Pd of ") + report.target +
+                            " at " + short_number(options.range_lo_m) + "–" +
+                            short_number(options.range_hi_m) + " m: ≥ " +
+                            std::to_string(options.criterion.returns) +
+                            (options.detections ? " warned frame(s) within " : " return(s) within ") +
                             short_number(options.criterion.window_s) + " s, by " + options.by;
   svg += "<text x=\"" + short_number(kLeft) + "\" y=\"24\" font-size=\"14\">" + xml_text(title) +
          "</text>\n";
@@ -123,9 +126,9 @@ std::string roc_svg(const RocReport& report, const RocOptions& options) {
   }
   add("<rect x=\"%g\" y=\"%g\" width=\"%g\" height=\"%g\" fill=\"none\" stroke=\"#444\"/>\n", kLeft,
       kTop, plot_w, plot_h);
-  add("<text x=\"%g\" y=\"%g\" text-anchor=\"middle\">false returns per second (log "
-      "scale)</text>\n",
-      kLeft + plot_w / 2, kTop + plot_h + 38);
+  add("<text x=\"%g\" y=\"%g\" text-anchor=\"middle\">%s (log scale)</text>\n",
+      kLeft + plot_w / 2, kTop + plot_h + 38,
+      options.detections ? "false warnings per flight hour" : "false returns per second");
   add("<text transform=\"translate(18 %g) rotate(-90)\" text-anchor=\"middle\">Pd within %s s"
       "</text>\n",
       kTop + plot_h / 2, short_number(options.criterion.window_s).c_str());

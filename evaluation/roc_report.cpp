@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "evaluation/roc_figure.hpp"
+#include "evaluation/warned_frames.hpp"
 #include "geometry/error.hpp"
 #include "geometry/number_text.hpp"
 #include "io/files/csv_cells.hpp"
@@ -37,7 +38,8 @@ std::optional<double> number_of(std::string_view text) {
 
 // One row per distinct value: numbers pool by value, other text by spelling.
 std::vector<RocRow> roc_rows(std::span<const FlightTracks> flights,
-                             std::span<const std::string> values, const RocOptions& options) {
+                             std::span<const std::string> values, const RocOptions& options,
+                             std::span<const WarningTally> warnings) {
   std::vector<std::optional<double>> numbers;
   for (const std::string& value : values) numbers.push_back(number_of(value));
   const bool numeric = std::all_of(numbers.begin(), numbers.end(),
@@ -68,6 +70,10 @@ std::vector<RocRow> roc_rows(std::span<const FlightTracks> flights,
       const std::vector<TargetFlight> member = target_flights(flights.subspan(m, 1));
       pooled.insert(pooled.end(), member.begin(), member.end());
       row.false_returns += false_returns_of(flights[m].facts);
+      if (!warnings.empty()) {
+        if (!row.warnings) row.warnings.emplace();
+        *row.warnings += warnings[m];
+      }
     }
     row.members = members_of[r].size();
     const PdCurve curve = detection_probability(pooled, options.criterion, bin, options.confidence);
@@ -88,6 +94,8 @@ std::optional<double> pd_of(const RocRow& row) {
 
 std::string roc_csv(const RocReport& report) {
   std::string out(kRocCsvHeader);
+  const bool warnings = !report.rows.empty() && report.rows.front().warnings.has_value();
+  if (warnings) out += ",warning_tracks,false_warnings,flight_h,false_warnings_per_h";
   out += '\n';
   for (const RocRow& row : report.rows) {
     out += csv_cell(row.value);
@@ -109,6 +117,16 @@ std::string roc_csv(const RocReport& report) {
     }
     out += ',';
     append_csv_significant(out, row.false_returns.per_s(), kRateDigits);
+    if (row.warnings) {
+      for (const std::uint64_t count : {row.warnings->tracks, row.warnings->false_warnings}) {
+        out += ',';
+        append_csv_integer(out, static_cast<std::int64_t>(count));
+      }
+      out += ',';
+      append_csv_significant(out, row.warnings->hours, kRateDigits);
+      out += ',';
+      append_csv_significant(out, row.warnings->false_warnings_per_hour(), kRateDigits);
+    }
     out += '\n';
   }
   return out;
@@ -133,8 +151,14 @@ nlohmann::json roc_json(const RocReport& report, const RocOptions& options) {
                     {"false_returns", row.false_returns.false_returns},
                     {"flight_s", row.false_returns.flight_s},
                     {"false_returns_per_s", number_or_null(row.false_returns.per_s())}});
+    if (row.warnings) {
+      rows.back()["warning_tracks"] = row.warnings->tracks;
+      rows.back()["false_warnings"] = row.warnings->false_warnings;
+      rows.back()["flight_hours"] = row.warnings->hours;
+      rows.back()["false_warnings_per_hour"] = row.warnings->false_warnings_per_hour();
+    }
   }
-  return {{"target", report.target},
+  nlohmann::json out = {{"target", report.target},
           {"by", options.by},
           {"range_m", {options.range_lo_m, options.range_hi_m}},
           {"returns", options.criterion.returns},
@@ -144,6 +168,11 @@ nlohmann::json roc_json(const RocReport& report, const RocOptions& options) {
           {"flights", report.flights},
           {"rows", rows},
           {"definitions", "docs/evidence.md (owsim " + std::string(version_string) + ")"}};
+  if (options.detections) {
+    out["evidence"] = "warnings";
+    out["gate_m"] = options.gate_m;
+  }
+  return out;
 }
 
 }  // namespace
@@ -160,7 +189,7 @@ void parse_roc_range(const std::string& text, RocOptions& options) {
 }
 
 RocReport roc_report_of(std::span<const FlightTracks> members, std::span<const std::string> values,
-                        const RocOptions& options) {
+                        const RocOptions& options, std::span<const WarningTally> warnings) {
   if (values.size() != members.size()) {
     throw Error("roc: " + std::to_string(values.size()) + " values for " +
                 std::to_string(members.size()) + " members");
@@ -168,7 +197,11 @@ RocReport roc_report_of(std::span<const FlightTracks> members, std::span<const s
   RocReport report;
   report.target = options.target.name();
   report.flights = members.size();
-  report.rows = roc_rows(members, values, options);
+  if (!warnings.empty() && warnings.size() != members.size()) {
+    throw Error("roc: " + std::to_string(warnings.size()) + " warning tallies for " +
+                std::to_string(members.size()) + " members");
+  }
+  report.rows = roc_rows(members, values, options, warnings);
   return report;
 }
 
@@ -207,9 +240,14 @@ RocReport write_roc_report(const RocOptions& options) {
   for (const CampaignFlight& member : members) {
     flights.push_back(read_target_tracks(member, options.target));
   }
+  std::vector<WarningTally> warnings;
+  if (options.detections) {
+    warnings = count_flights_warnings(options.folder, members, flights, *options.detections,
+                                      options.gate_m);
+  }
   require_target_found(options.target, flights, options.folder);
 
-  RocReport report = roc_report_of(flights, values, options);
+  RocReport report = roc_report_of(flights, values, options, warnings);
   report.directory = options.out ? *options.out : options.folder;
   write_report_files(report.directory, roc_report_files(report, options));
   return report;

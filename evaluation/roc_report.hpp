@@ -5,6 +5,8 @@
 // counts them (detection_probability) — with its Clopper–Pearson interval, against the sensor's
 // false returns per second (false_returns.hpp). Written as roc.csv, roc.json and roc.svg, rendered
 // in memory after every input has been read and replaced together (report_files.hpp).
+// With `detections` (--detections), Pd is the warnings' (evaluation/warned_frames.hpp) and each
+// value's false warnings per flight hour are the x axis instead of the false returns.
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -14,6 +16,7 @@
 
 #include "evaluation/detection_probability.hpp"
 #include "evaluation/false_returns.hpp"
+#include "evaluation/warned_frames.hpp"
 #include "evaluation/pd_target.hpp"
 #include "evaluation/report_files.hpp"
 
@@ -28,6 +31,10 @@ struct RocOptions {
   DetectionCriterion criterion;
   double confidence = 0.95;
   std::optional<std::filesystem::path> out;  // default: `folder`
+  // Warnings instead of returns (as PdOptions::detections): a folder of <member>.csv, or the sweep
+  // folder itself.
+  std::optional<std::filesystem::path> detections;
+  double gate_m = 5.0;
 };
 
 // One value of the key: its members pooled.
@@ -39,6 +46,7 @@ struct RocRow {
   std::uint64_t windows_detected = 0;
   ProportionInterval window_interval;  // NaN bounds without windows
   FalseReturns false_returns;          // summed over the members
+  std::optional<WarningTally> warnings;  // with --detections, summed over the members
 };
 
 struct RocReport {
@@ -53,10 +61,12 @@ struct RocReport {
 [[nodiscard]] RocReport write_roc_report(const RocOptions& options);
 
 // The report over the members already read (read_target_tracks, evaluation/pd_target.hpp), with
-// `values[m]` member m's value of the key; `directory` left empty.
+// `values[m]` member m's value of the key, and with --detections `warnings[m]` its warnings (their
+// rows already counting warned frames; empty without); `directory` left empty.
 [[nodiscard]] RocReport roc_report_of(std::span<const FlightTracks> members,
                                       std::span<const std::string> values,
-                                      const RocOptions& options);
+                                      const RocOptions& options,
+                                      std::span<const WarningTally> warnings = {});
 
 // roc.csv, roc.json and roc.svg of `report`, as text.
 [[nodiscard]] std::vector<ReportFile> roc_report_files(const RocReport& report,

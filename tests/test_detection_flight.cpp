@@ -6,8 +6,11 @@
 // bad input is refused in one line with nothing written.
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -130,6 +133,121 @@ TEST(DetectionFlight, DetectWritesTheBytesTheRunWroteFromWordsAndNavigationAlone
   EXPECT_EQ(read_whole_file(dir / "bare/detections.csv"), in_loop);
 }
 
+nlohmann::json read_json(const std::filesystem::path& file) {
+  return nlohmann::json::parse(read_whole_file(file));
+}
+
+// detections.csv with each row changed by `change` (cells by column).
+void rewrite_rows(const std::filesystem::path& from, const std::filesystem::path& to,
+                  const std::function<void(std::vector<std::string>&)>& change) {
+  const auto rows = csv_rows(from);
+  std::ofstream out(to);
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    std::vector<std::string> cells = rows[r];
+    if (r > 0) change(cells);
+    for (std::size_t c = 0; c < cells.size(); ++c) out << (c ? "," : "") << cells[c];
+    out << '\n';
+  }
+}
+
+// `owsim pd --detections`: the warnings are the evidence (a window is detected when a frame of it
+// warned of the target with its class, DETECTION-SPEC §5). On the approach every conductor is
+// warned, so the three trials are detected; the same warnings relabelled `pole` warn of no wire;
+// moved 200 m off every object they are false warnings, one per track. Without --detections pd.json
+// is the returns' as before. `owsim roc --detections` over a sweep of two thresholds.
+TEST(DetectionFlight, WarningPdCountsTheWindowsWarningsOfTheTargetsClassMatched) {
+  const TempDir dir;
+  ASSERT_EQ(run_cli({"run", kApproach, "--out", "run", "--outputs", "d64,summary,truth,detections",
+                     "--quiet"},
+                    dir.path())
+                .exit_status,
+            0);
+  const CliResult returns = run_cli({"pd", "run", "--out", "returns", "--quiet"}, dir.path());
+  ASSERT_EQ(returns.exit_status, 0) << returns.err;
+  const CliResult warned =
+      run_cli({"pd", "run", "--detections", "run", "--out", "warned", "--quiet"}, dir.path());
+  ASSERT_EQ(warned.exit_status, 0) << warned.err;
+  const nlohmann::json by_returns = read_json(dir / "returns/pd.json");
+  const nlohmann::json by_warnings = read_json(dir / "warned/pd.json");
+  EXPECT_FALSE(by_returns.contains("evidence"));
+  EXPECT_EQ(by_warnings.at("evidence"), "warnings");
+  EXPECT_EQ(by_warnings.at("trials"), 3);
+  EXPECT_EQ(by_warnings.at("trials_detected"), 3);
+  // The same windows; the warnings detect fewer of them than the returns at range.
+  EXPECT_EQ(by_warnings.at("windows"), by_returns.at("windows"));
+  EXPECT_GT(by_warnings.at("windows_detected").get<int>(), 0);
+  // Every track on the approach warns of an object: no false warning.
+  EXPECT_EQ(by_warnings.at("false_warnings"), 0);
+  EXPECT_GT(by_warnings.at("warning_tracks").get<int>(), 5);
+  EXPECT_NEAR(by_warnings.at("flight_hours").get<double>(), 36.0 / 3600.0, 0.5 / 3600.0);
+
+  // pd.json of the approach's detections changed row by row by `change`.
+  const auto pd_of_changed = [&](const std::string& name,
+                                 const std::function<void(std::vector<std::string>&)>& change) {
+    rewrite_rows(dir / "run/detections.csv", dir / (name + ".csv"), change);
+    const CliResult pd = run_cli(
+        {"pd", "run", "--detections", name + ".csv", "--out", name, "--quiet"}, dir.path());
+    EXPECT_EQ(pd.exit_status, 0) << pd.err;
+    return read_json(dir / name / "pd.json");
+  };
+  // Relabelled: no wire warned.
+  const nlohmann::json by_poles =
+      pd_of_changed("poles", [](std::vector<std::string>& cells) { cells[3] = "pole"; });
+  EXPECT_EQ(by_poles.at("windows_detected"), 0);
+  EXPECT_EQ(by_poles.at("false_warnings"), 0);
+  // Moved 200 m up: every track is a false warning.
+  const nlohmann::json moved = pd_of_changed("moved", [](std::vector<std::string>& cells) {
+    cells[6] = std::to_string(std::stod(cells[6]) + 200.0);
+  });
+  EXPECT_EQ(moved.at("windows_detected"), 0);
+  EXPECT_EQ(moved.at("false_warnings"), by_warnings.at("warning_tracks"));
+
+  // A missing detections file: one line naming it, nothing written.
+  const CliResult missing =
+      run_cli({"pd", "run", "--detections", "nowhere.csv", "--out", "none"}, dir.path());
+  EXPECT_NE(missing.exit_status, 0);
+  EXPECT_NE(missing.err.find("nowhere.csv: missing"), std::string::npos) << missing.err;
+  EXPECT_EQ(std::count(missing.err.begin(), missing.err.end(), '\n'), 1) << missing.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "none"));
+}
+
+TEST(DetectionFlight, WarningRocPlotsTheWarningPdAgainstFalseWarningsPerHour) {
+  const TempDir dir;
+  std::filesystem::copy_file(kApproach, dir / "approach.yaml");
+  std::filesystem::copy_file(OWSIM_SOURCE_DIR "/tests/data/detector/building.obj",
+                             dir / "building.obj");
+  std::ofstream(dir / "sweep.yaml") << "base: approach.yaml\ncount: 2\nseed: 3\n"
+                                       "outputs: summary,truth,detections\n"
+                                       "vary:\n  sensor.threshold: {values: [0.002, 0.004]}\n";
+  const CliResult sweep =
+      run_cli({"sweep", "sweep.yaml", "--out", "campaign", "--quiet"}, dir.path());
+  ASSERT_EQ(sweep.exit_status, 0) << sweep.err;
+  const CliResult roc = run_cli({"roc", "campaign", "--range", "0:1300", "--detections",
+                                 "campaign", "--out", "roc", "--quiet"},
+                                dir.path());
+  ASSERT_EQ(roc.exit_status, 0) << roc.err;
+  const nlohmann::json report = read_json(dir / "roc/roc.json");
+  EXPECT_EQ(report.at("evidence"), "warnings");
+  ASSERT_EQ(report.at("rows").size(), 2u);
+  for (const nlohmann::json& row : report.at("rows")) {
+    EXPECT_GT(row.at("windows_detected").get<int>(), 0);
+    EXPECT_DOUBLE_EQ(row.at("false_warnings_per_hour").get<double>(),
+                     row.at("false_warnings").get<double>() / row.at("flight_hours").get<double>());
+  }
+  // Half the default threshold lets ~3,500 false returns a second through: they cost false
+  // warnings (and buy Pd); at the default's neighbourhood there are none.
+  const nlohmann::json& low = report.at("rows")[0];
+  const nlohmann::json& high = report.at("rows")[1];
+  EXPECT_EQ(low.at("value"), 0.002);
+  EXPECT_GT(low.at("false_warnings").get<int>(), 10);
+  EXPECT_EQ(high.at("false_warnings"), 0);
+  EXPECT_GE(low.at("windows_detected").get<int>(), high.at("windows_detected").get<int>());
+  const std::string header = read_whole_file(dir / "roc/roc.csv").substr(0, 200);
+  EXPECT_NE(header.find(",false_warnings,flight_h,false_warnings_per_h\n"), std::string::npos);
+  EXPECT_NE(read_whole_file(dir / "roc/roc.svg").find("false warnings per flight hour"),
+            std::string::npos);
+}
+
 TEST(DetectionFlight, BadInputIsOneLineAndNothingWritten) {
   const TempDir dir;
   const auto refused = [&](const std::vector<std::string>& arguments, const std::string& says) {
@@ -152,7 +270,8 @@ TEST(DetectionFlight, BadInputIsOneLineAndNothingWritten) {
   std::filesystem::rename(dir / "run/flight.d64", dir / "flight.d64");
   refused({"detect", "run"}, "run/flight.d64: missing");
   std::filesystem::copy_file(dir / "flight.d64", dir / "run/flight.d64");
-  std::filesystem::resize_file(dir / "run/flight.d64", std::filesystem::file_size(dir / "flight.d64") - 3);
+  std::filesystem::resize_file(dir / "run/flight.d64",
+                               std::filesystem::file_size(dir / "flight.d64") - 3);
   refused({"detect", "run"}, "run/flight.d64: cannot decode");
   EXPECT_FALSE(std::filesystem::exists(dir / "run/detections.csv"));
   EXPECT_FALSE(std::filesystem::exists(dir / "run/detections.csv.partial"));
