@@ -32,6 +32,10 @@ nlohmann::ordered_json to_json(const ThroughputReport& report) {
           {"points_pulses_per_s", report.points_pulses_per_s},
           {"truth_pulses_per_s", report.truth_pulses_per_s},
           {"truth_ratio_paired", report.truth_ratio_paired},
+          {"detections_pulses_per_s", report.detections_pulses_per_s},
+          {"detections_ratio_paired", report.detections_ratio_paired},
+          {"detector_frames_per_s", report.detector_frames_per_s},
+          {"detector_realtime_factor", report.detector_realtime_factor},
           {"noise_off_pulses_per_s", report.noise_off_pulses_per_s},
           {"realtime_factor", report.realtime_factor},
           {"trace_api", std::string(to_string(report.trace_api))},
@@ -80,6 +84,13 @@ void print_text(const ThroughputReport& r) {
       "paired by round (median)\n",
       r.truth_pulses_per_s, ratio(r.truth_pulses_per_s, r.end_to_end_pulses_per_s),
       r.truth_ratio_paired);
+  fmt::print(
+      "  detections     {:>12.0f} pulses/s  {:.2f} of end-to-end (--outputs d64,detections); {:.3f} "
+      "paired by round (median)\n",
+      r.detections_pulses_per_s, ratio(r.detections_pulses_per_s, r.end_to_end_pulses_per_s),
+      r.detections_ratio_paired);
+  fmt::print("  detector       {:>12.1f} frames/s  on one thread: {:.0f}x real time\n",
+             r.detector_frames_per_s, r.detector_realtime_factor);
   fmt::print(
       "  noise off      {:>12.0f} pulses/s  end-to-end with the receiver's noise is {:.2f} of it "
       "(sensor.receiver.noise: off)\n",

@@ -19,6 +19,7 @@
 #include "cli/peak_memory.hpp"
 #include "engine/brute_force_tracer.hpp"
 #include "geometry/error.hpp"
+#include "io/detections/flight_detections.hpp"
 #include "owsim/flight_run.hpp"
 #include "owsim/simulation.hpp"
 
@@ -134,6 +135,25 @@ double end_to_end_seconds(const FrameSimulator& simulator, const FlightSetup& se
   return seconds;
 }
 
+// `owsim run --outputs d64,detections` over the frames, as end_to_end_seconds; `detector_s` is
+// told the seconds the detector itself took (on the pipeline's one serial thread).
+double detections_seconds(const FrameSimulator& simulator, const FlightSetup& setup, int threads,
+                          double& detector_s) {
+  const ScratchFolder folder;
+  FlightOutputs outputs(
+      flight_output_options(setup, folder.path(), {OutputKind::d64, OutputKind::detections}),
+      setup.scene, setup.scenario.scan, setup.local_frame);
+  FlightDetections detections(setup.scenario, setup.trajectory, folder.path() / "detections.csv");
+  const double seconds = seconds_of([&] {
+    simulate_frames(simulator, setup, FlightRange{0, setup.frames}, threads, outputs, {},
+                    &detections);
+  });
+  outputs.finish({});
+  detections.finish();
+  detector_s = detections.report().detector_s;
+  return seconds;
+}
+
 double median(std::vector<double> values) {
   if (values.empty()) return 0.0;
   std::sort(values.begin(), values.end());
@@ -216,6 +236,9 @@ ThroughputReport measure_throughput(const ThroughputOptions& options) {
   std::vector<double> traversal_shares;  // per round: traversal-only's seconds over end-to-end's
   std::vector<double> trace_shares;      // per round: trace-only's seconds over end-to-end's
   std::vector<double> truth_ratios;      // per round: the words' seconds over words + truth's
+  double detections_best = kNever;
+  double detector_best = kNever;           // the detector's own seconds, its best round
+  std::vector<double> detections_ratios;   // per round: the words' seconds over words + detections'
   std::vector<double> traversal_shares_1;  // the same two on one thread
   std::vector<double> trace_shares_1;
   tbb::task_arena one_thread(1);
@@ -246,6 +269,13 @@ ThroughputReport measure_throughput(const ThroughputOptions& options) {
       words();
     }
     truth_ratios.push_back(truth_s > 0.0 ? words_s / truth_s : 0.0);
+    // The detector in the loop, right after the words alone (the pair's ratio as truth's).
+    double detector_s = 0.0;
+    const double detections_s = detections_seconds(simulator, setup, threads, detector_s);
+    detections_best = std::min(detections_best, detections_s);
+    detector_best = std::min(detector_best, detector_s);
+    detections_ratios.push_back(detections_s > 0.0 ? words_s / detections_s : 0.0);
+    progress.note("words and detections", round, options.repeats, rate(detections_best));
     traversal_shares.push_back(words_s > 0.0 ? traversal_s / words_s : 0.0);
     trace_shares.push_back(words_s > 0.0 ? trace_s / words_s : 0.0);
     const double trace_1_s =
@@ -292,6 +322,11 @@ ThroughputReport measure_throughput(const ThroughputOptions& options) {
   report.truth_pulses_per_s = rate(truth_best);
   report.noise_off_pulses_per_s = rate(noise_off_best);
   report.truth_ratio_paired = median(truth_ratios);
+  report.detections_pulses_per_s = rate(detections_best);
+  report.detections_ratio_paired = median(detections_ratios);
+  report.detector_frames_per_s =
+      detector_best > 0.0 ? static_cast<double>(setup.frames) / detector_best : 0.0;
+  report.detector_realtime_factor = report.detector_frames_per_s * scan.frame_duration_s();
   report.traversal_only_pulses_per_s = rate(traversal_best);
   report.traversal_share_paired = median(traversal_shares);
   report.end_to_end_over_trace_paired = median(trace_shares);

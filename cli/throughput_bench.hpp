@@ -12,6 +12,11 @@
 //                  temporary folder, the other outputs off (as on a long flight, --outputs d64);
 //   single_thread — the same end-to-end run in a TBB arena of one thread, paired by round with
 //                  trace-only and traversal-only in the same arena;
+//   detections   — the same end-to-end run with the reference obstacle detector in the loop
+//                  (--outputs d64,detections), paired by round with the words alone; and the
+//                  detector's own frames per second on the one thread it runs on (its time inside
+//                  ObstacleDetector::add_frame over the frames), and that over the sensor's frame
+//                  rate: how many times real time the detector keeps up on one core;
 //   las, points  — the same end-to-end run writing points.las alone (--outputs las), and the three
 //                  point files (--outputs points), instead of the words;
 //   brute_force  — the source's method (every ray against every segment, cylinder and triangle)
@@ -55,6 +60,11 @@ struct ThroughputReport {
   // over this): the deterministic receiver of §7 on the same scene.
   double noise_off_pulses_per_s = 0.0;
   double realtime_factor = 0.0;  // end_to_end / the sensor's PRF
+  double detections_pulses_per_s = 0.0;  // --outputs d64,detections
+  // The words' seconds over the words with detections.csv's, each round's pair, the median.
+  double detections_ratio_paired = 0.0;
+  double detector_frames_per_s = 0.0;     // the detector alone, on its one thread (best round)
+  double detector_realtime_factor = 0.0;  // detector_frames_per_s × the frame's duration
   TraceApi trace_api = TraceApi::stream;
   double peak_rss_mb = 0.0;
   // Not in INTERFACE.md's list, reported beside it:

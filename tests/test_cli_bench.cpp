@@ -63,7 +63,9 @@ TEST(CliBench, JsonHoldsEveryFieldConsistently) {
         "single_thread_pulses_per_s", "las_pulses_per_s", "points_pulses_per_s",
         "truth_pulses_per_s", "realtime_factor", "peak_rss_mb", "traversal_only_pulses_per_s",
         "traversal_share_paired", "end_to_end_over_trace_paired",
-        "traversal_share_single_thread_paired", "end_to_end_over_trace_single_thread_paired"}) {
+        "traversal_share_single_thread_paired", "end_to_end_over_trace_single_thread_paired",
+        "detections_pulses_per_s", "detections_ratio_paired", "detector_frames_per_s",
+        "detector_realtime_factor"}) {
     ASSERT_TRUE(report.at(key).is_number()) << key;
     const double value = report.at(key).get<double>();
     EXPECT_TRUE(std::isfinite(value) && value > 0.0) << key << " = " << value;
@@ -77,6 +79,11 @@ TEST(CliBench, JsonHoldsEveryFieldConsistently) {
   EXPECT_NEAR(report.at("realtime_factor").get<double>(),
               report.at("end_to_end_pulses_per_s").get<double>() / 61'111.0,
               1e-9 * report.at("realtime_factor").get<double>());
+
+  // The detector's real-time factor is its frames per second times a frame's duration.
+  EXPECT_NEAR(report.at("detector_realtime_factor").get<double>(),
+              report.at("detector_frames_per_s").get<double>() * kPulsesPerFrame / 61'111.0,
+              1e-9 * report.at("detector_realtime_factor").get<double>());
 
   // The winning query form is one of the four, and it is the fastest of them.
   ASSERT_TRUE(report.at("trace_api").is_string());

@@ -32,11 +32,12 @@ FlightDetections::FlightDetections(const Scenario& scenario, const PoseSource& p
       file_(std::move(csv)),
       rows_(kDetectionsCsvHeader) {}
 
-void FlightDetections::prepare(std::int64_t frame, std::span<const std::uint64_t> milows_words,
-                               std::span<const std::uint32_t> hellas_words,
-                               std::optional<std::uint32_t> hellas_header_word,
-                               PreparedDetectorFrame& out) const {
-  const ScanParams& scan = scenario_.scan;
+void prepare_detector_frame(const Scenario& scenario, const PoseSource& poses, std::int64_t frame,
+                            std::span<const std::uint64_t> milows_words,
+                            std::span<const std::uint32_t> hellas_words,
+                            std::optional<std::uint32_t> hellas_header_word,
+                            PreparedDetectorFrame& out) {
+  const ScanParams& scan = scenario.scan;
   const RecordingLayout layout = grid_recording_layout(scan, hellas_header_word);
   DecodedFrame& decoded = out.decoded;
   decoded.frame = frame;
@@ -48,8 +49,16 @@ void FlightDetections::prepare(std::int64_t frame, std::span<const std::uint64_t
     decoded.words.assign(hellas_words.begin(), hellas_words.end());
   }
   decode_frame_words(scan, layout, decoded);
-  decoded_returns_enu(decoded, poses_, scenario_, out.returns);
-  out.aircraft_enu_m = poses_.pose_at(decoded.sweep.start_s).position_enu_m;
+  decoded_returns_enu(decoded, poses, scenario, out.returns);
+  out.aircraft_enu_m = poses.pose_at(decoded.sweep.start_s).position_enu_m;
+}
+
+void FlightDetections::prepare(std::int64_t frame, std::span<const std::uint64_t> milows_words,
+                               std::span<const std::uint32_t> hellas_words,
+                               std::optional<std::uint32_t> hellas_header_word,
+                               PreparedDetectorFrame& out) const {
+  prepare_detector_frame(scenario_, poses_, frame, milows_words, hellas_words, hellas_header_word,
+                         out);
 }
 
 void FlightDetections::add(const PreparedDetectorFrame& frame) {

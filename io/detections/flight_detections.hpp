@@ -46,14 +46,22 @@ struct PreparedDetectorFrame {
   Eigen::Vector3d aircraft_enu_m = Eigen::Vector3d::Zero();
 };
 
+// Frame `frame`'s words as a run encoded them (MilOWS or HELLAS; for frame 0 of a HELLAS run, the
+// file's header word) into what the detector reads: decoded on the scenario's pulse grid and placed
+// by `poses`. Thread-safe; each call its own `out`.
+void prepare_detector_frame(const Scenario& scenario, const PoseSource& poses, std::int64_t frame,
+                            std::span<const std::uint64_t> milows_words,
+                            std::span<const std::uint32_t> hellas_words,
+                            std::optional<std::uint32_t> hellas_header_word,
+                            PreparedDetectorFrame& out);
+
 class FlightDetections {
  public:
   // `scenario` (its sensor, mount, counter and detector) and `poses` (its trajectory) must outlive
   // this. Creates `csv`'s temporary (io/files/atomic_output_file.hpp); throws owsim::Error.
   FlightDetections(const Scenario& scenario, const PoseSource& poses, std::filesystem::path csv);
 
-  // Frame `frame`'s words as the run encoded them (MilOWS or HELLAS; for frame 0 of a HELLAS run,
-  // the file's header word) into what the detector reads. Thread-safe; each call its own `out`.
+  // prepare_detector_frame with this flight's scenario and poses.
   void prepare(std::int64_t frame, std::span<const std::uint64_t> milows_words,
                std::span<const std::uint32_t> hellas_words,
                std::optional<std::uint32_t> hellas_header_word, PreparedDetectorFrame& out) const;
