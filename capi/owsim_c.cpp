@@ -13,12 +13,19 @@
 #include "geometry/error.hpp"
 #include "owsim/flight_report.hpp"
 #include "owsim/owsim.h"
+#include "owsim/frame_detector.hpp"
 #include "owsim/simulation.hpp"
 #include "owsim/version.hpp"
 
 struct owsim_simulation {
   explicit owsim_simulation(owsim::Simulation s) : simulation(std::move(s)) {}
   owsim::Simulation simulation;
+};
+
+struct owsim_detector {
+  explicit owsim_detector(const owsim::Simulation& simulation) : detector(simulation) {}
+  owsim::FrameDetector detector;
+  std::vector<owsim_warning> warnings;
 };
 
 struct owsim_frame {
@@ -282,6 +289,48 @@ owsim_status owsim_simulate_frame_poses(owsim_simulation* simulation, int64_t fr
 }
 
 void owsim_frame_release(owsim_frame* frame) { delete frame; }
+
+owsim_status owsim_detector_create(const owsim_simulation* simulation, owsim_detector** out) {
+  if (out != nullptr) *out = nullptr;
+  return guarded("owsim_detector_create", [&] {
+    require(simulation, "simulation");
+    require(out, "out");
+    *out = new owsim_detector(simulation->simulation);
+  });
+}
+
+void owsim_detector_release(owsim_detector* detector) { delete detector; }
+
+owsim_status owsim_detector_add_frame(owsim_detector* detector, const owsim_frame* frame,
+                                      const owsim_warning** warnings, size_t* count) {
+  if (warnings != nullptr) *warnings = nullptr;
+  if (count != nullptr) *count = 0;
+  return guarded("owsim_detector_add_frame", [&] {
+    require(detector, "detector");
+    require(frame, "frame");
+    require(warnings, "warnings");
+    require(count, "count");
+    detector->warnings.clear();
+    for (const owsim::ObstacleWarning& w : detector->detector.add_frame(frame->frame)) {
+      owsim_warning out{};
+      out.frame = w.frame;
+      out.time_s = w.time_s;
+      out.track = w.track;
+      out.obstacle_class = static_cast<int32_t>(w.kind);
+      out.points = w.points;
+      out.e_m = w.nearest_enu_m.x();
+      out.n_m = w.nearest_enu_m.y();
+      out.u_m = w.nearest_enu_m.z();
+      out.range_m = w.range_m;
+      out.length_m = w.length_m;
+      out.width_m = w.width_m;
+      out.height_m = w.height_m;
+      detector->warnings.push_back(out);
+    }
+    *warnings = detector->warnings.data();
+    *count = detector->warnings.size();
+  });
+}
 
 int64_t owsim_frame_index(const owsim_frame* frame) {
   if (frame == nullptr) return none<int64_t>("owsim_frame_index", -1);

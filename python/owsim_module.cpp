@@ -11,6 +11,8 @@
 #include <pybind11/stl/filesystem.h>
 
 #include <cstddef>
+#include <cstring>
+#include <stdexcept>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -19,6 +21,7 @@
 
 #include "geometry/error.hpp"
 #include "owsim/flight_report.hpp"
+#include "owsim/frame_detector.hpp"
 #include "owsim/simulation.hpp"
 #include "owsim/version.hpp"
 
@@ -37,11 +40,26 @@ struct Field {
 // the record's layout, so that neither can drift from the struct (a hand-written "<u4" once read a
 // 2-byte member together with the two bytes after it).
 template <typename Record, typename T>
-Field field(const char* name, T Record::*member) {
+std::size_t offset_in(T Record::*member) {
   static const Record record{};
-  const auto offset = static_cast<std::size_t>(reinterpret_cast<const char*>(&(record.*member)) -
-                                               reinterpret_cast<const char*>(&record));
-  return Field{name, py::dtype::of<T>(), offset};
+  return static_cast<std::size_t>(reinterpret_cast<const char*>(&(record.*member)) -
+                                  reinterpret_cast<const char*>(&record));
+}
+
+template <typename Record, typename T>
+Field field(const char* name, T Record::*member) {
+  return Field{name, py::dtype::of<T>(), offset_in(member)};
+}
+
+// The same for a member numpy spells with a format string (an enum: "<u1"; an Eigen vector:
+// "(3,)<f8"), checked against the member's size.
+template <typename Record, typename T>
+Field field(const char* name, T Record::*member, const char* format) {
+  Field out{name, py::str(format), offset_in(member)};
+  if (py::dtype::from_args(out.format).itemsize() != static_cast<py::ssize_t>(sizeof(T))) {
+    throw std::logic_error(std::string("field ") + name + ": " + format + " is not its size");
+  }
+  return out;
 }
 
 py::dtype record_dtype(const std::vector<Field>& fields, std::size_t itemsize) {
@@ -76,6 +94,29 @@ py::dtype returns_dtype() {
       sizeof(R)));
   return dtype;
 }
+
+// detections.csv's columns as FrameDetector.add_frame returns them: `class` is the obstacle class
+// code (owsim.OBSTACLE_CLASS_NAMES), `enu_m` the track's point nearest to the aircraft.
+py::dtype warnings_dtype() {
+  using W = ObstacleWarning;
+  // Made once and never freed: a static py::dtype would be released after the interpreter.
+  static const py::dtype& dtype = *new py::dtype(record_dtype(
+      {field("frame", &W::frame), field("time_s", &W::time_s), field("track", &W::track),
+       field("class", &W::kind, "<u1"), field("enu_m", &W::nearest_enu_m, "(3,)<f8"),
+       field("range_m", &W::range_m), field("length_m", &W::length_m),
+       field("width_m", &W::width_m), field("height_m", &W::height_m),
+       field("points", &W::points)},
+      sizeof(W)));
+  return dtype;
+}
+
+// The reference detector, keeping its Simulation alive.
+struct PyFrameDetector {
+  explicit PyFrameDetector(std::shared_ptr<const Simulation> s)
+      : simulation(std::move(s)), detector(*simulation) {}
+  std::shared_ptr<const Simulation> simulation;
+  FrameDetector detector;
+};
 
 // `owsim pattern`'s columns (and the slot within the line).
 py::dtype pulses_dtype() {
@@ -240,6 +281,7 @@ PYBIND11_MODULE(owsim, m) {
   m.attr("CLASS_NAMES") = class_names;
   m.attr("UNKNOWN_CLASS") = kUnknownSurface;
   m.attr("NO_OBJECT") = kNoObject;
+  m.attr("OBSTACLE_CLASS_NAMES") = py::make_tuple("none", "wire", "pole", "tree");
 
   m.def(
       "view",
@@ -410,4 +452,35 @@ PYBIND11_MODULE(owsim, m) {
           py::arg("out") = py::none(), py::kw_only(), py::arg("outputs") = py::none(),
           py::arg("resume") = false, py::arg("progress") = py::none(),
           "What `owsim run` does; returns the run's report as a dict");
+
+  py::class_<PyFrameDetector>(
+      m, "FrameDetector",
+      "The reference obstacle detector fed frame by frame (docs/detection.md): it reads the "
+      "frames' words and the scenario's navigation, never their returns' truth")
+      .def(py::init([](std::shared_ptr<const Simulation> s) {
+             return std::make_unique<PyFrameDetector>(std::move(s));
+           }),
+           py::arg("simulation"))
+      .def(
+          "add_frame",
+          [](PyFrameDetector& d, const Frame& frame) {
+            std::span<const ObstacleWarning> warnings;
+            {
+              py::gil_scoped_release unlocked;
+              warnings = d.detector.add_frame(frame);
+            }
+            py::array out(warnings_dtype(),
+                          py::array::ShapeContainer{static_cast<py::ssize_t>(warnings.size())});
+            if (!warnings.empty()) {
+              std::memcpy(out.mutable_data(), warnings.data(), warnings.size_bytes());
+            }
+            return out;
+          },
+          py::arg("frame"),
+          "The warnings after `frame` (frames in order, each once): a structured array of "
+          "detections.csv's columns")
+      .def("csv_rows", [](const PyFrameDetector& d) { return d.detector.csv_rows(); },
+           "The last frame's warnings as detections.csv rows")
+      .def_property_readonly_static(
+          "csv_header", [](py::object) { return std::string(FrameDetector::csv_header()); });
 }

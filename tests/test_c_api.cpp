@@ -317,3 +317,70 @@ TEST(CApi, ViewWritesThePageOfARunFolder) {
 }
 
 }  // namespace
+
+// The detector through the C ABI: its warnings, printed as detections.csv rows, are the rows
+// `owsim run --outputs detections` writes for the same frames.
+namespace {
+
+std::string warning_row(const owsim_warning& w) {
+  static const char* const kObstacleClasses[] = {"none", "wire", "pole", "tree"};
+  char head[96];
+  std::snprintf(head, sizeof head, "%lld,", static_cast<long long>(w.frame));
+  char middle[64];
+  std::snprintf(middle, sizeof middle, ",%lld,%s,", static_cast<long long>(w.track),
+                kObstacleClasses[w.obstacle_class]);
+  return std::string(head) + fixed(w.time_s, 9) + middle + fixed(w.e_m, 3) + "," +
+         fixed(w.n_m, 3) + "," + fixed(w.u_m, 3) + "," + fixed(w.range_m, 3) + "," +
+         fixed(w.length_m, 3) + "," + fixed(w.width_m, 3) + "," + fixed(w.height_m, 3) + "," +
+         std::to_string(w.points);
+}
+
+TEST(CApi, DetectorWarnsAsTheRunsDetectionsCsv) {
+  const TempDir folder("owsim_c_api_detector");
+  const fs::path approach = fs::path(OWSIM_SOURCE_DIR) / "tests/data/detector/approach.yaml";
+  const owsim::test::CliResult run =
+      owsim::test::run_cli({"run", approach.string(), "--frames", "40", "--outputs", "detections",
+                            "--quiet", "--out", (folder / "run").string()},
+                           fs::current_path());
+  ASSERT_EQ(run.exit_status, 0) << run.err;
+  std::istringstream written(owsim::test::read_whole_file(folder / "run/detections.csv"));
+  std::string header;
+  std::getline(written, header);
+  std::vector<std::string> rows;
+  for (std::string row; std::getline(written, row);) rows.push_back(row);
+  ASSERT_GT(rows.size(), 20u);
+
+  owsim_simulation_options options = owsim_simulation_options_default();
+  options.frames = 40;
+  owsim_simulation* simulation = nullptr;
+  ASSERT_EQ(owsim_simulation_open_with(approach.c_str(), &options, &simulation), OWSIM_OK)
+      << owsim_last_error();
+  owsim_detector* detector = nullptr;
+  ASSERT_EQ(owsim_detector_create(simulation, &detector), OWSIM_OK) << owsim_last_error();
+  owsim_frame* frame = nullptr;
+  std::vector<std::string> warned;
+  for (int64_t k = 0; k < 40; ++k) {
+    ASSERT_EQ(owsim_simulate_frame(simulation, k, &frame), OWSIM_OK) << owsim_last_error();
+    const owsim_warning* warnings = nullptr;
+    size_t count = 0;
+    ASSERT_EQ(owsim_detector_add_frame(detector, frame, &warnings, &count), OWSIM_OK)
+        << owsim_last_error();
+    for (size_t w = 0; w < count; ++w) warned.push_back(warning_row(warnings[w]));
+  }
+  EXPECT_EQ(warned, rows);
+  // A frame given twice, and NULL handles: a status and one line, no crash.
+  const owsim_warning* warnings = nullptr;
+  size_t count = 0;
+  EXPECT_EQ(owsim_detector_add_frame(detector, frame, &warnings, &count), OWSIM_ERROR_INPUT);
+  EXPECT_NE(std::string(owsim_last_error()).find("frame 39 given after frame 39"),
+            std::string::npos)
+      << owsim_last_error();
+  EXPECT_EQ(owsim_detector_add_frame(nullptr, frame, &warnings, &count), OWSIM_ERROR_ARGUMENT);
+  owsim_detector_release(detector);
+  EXPECT_EQ(owsim_detector_create(nullptr, &detector), OWSIM_ERROR_ARGUMENT);
+  EXPECT_EQ(detector, nullptr);
+  owsim_frame_release(frame);
+  owsim_simulation_release(simulation);
+}
+
+}  // namespace

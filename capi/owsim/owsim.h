@@ -214,6 +214,33 @@ OWSIM_API const owsim_return* owsim_frame_returns(const owsim_frame* frame, size
 OWSIM_API const owsim_pulse* owsim_frame_pulses(owsim_frame* frame, size_t* count);
 OWSIM_API const owsim_ray* owsim_frame_rays(owsim_frame* frame, size_t* count);
 
+/* ---- the reference obstacle detector (docs/detection.md) ---- */
+
+typedef struct owsim_detector owsim_detector;
+
+/* One warning: a track's report in a frame, detections.csv's row (DETECTION-SPEC §5). */
+typedef struct owsim_warning {
+  int64_t frame;
+  double time_s; /* of the frame's first pulse */
+  int64_t track;
+  int32_t obstacle_class; /* 1 wire, 2 pole, 3 tree */
+  uint32_t points;        /* supporting it in this frame's window (0: held without support) */
+  double e_m, n_m, u_m;   /* the track's point nearest to the aircraft, local ENU */
+  double range_m;         /* its distance from the aircraft */
+  double length_m, width_m, height_m;
+} owsim_warning;
+
+/* A detector for the simulation's frames, with the scenario's `detector:` section. It reads the
+ * frames' words and the scenario's navigation, never their returns' truth: its warnings are what
+ * `owsim run --outputs detections` writes. The simulation must outlive it. */
+OWSIM_API owsim_status owsim_detector_create(const owsim_simulation* simulation,
+                                             owsim_detector** out);
+OWSIM_API void owsim_detector_release(owsim_detector* detector);
+/* The warnings after `frame` (frames in order, each once), by track id; *warnings stays valid until
+ * the detector's next call. */
+OWSIM_API owsim_status owsim_detector_add_frame(owsim_detector* detector, const owsim_frame* frame,
+                                                const owsim_warning** warnings, size_t* count);
+
 /* ---- whole runs ---- */
 
 /* Called after every frame; return nonzero to stop the run (OWSIM_ERROR_CANCELLED, no output

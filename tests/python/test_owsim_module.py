@@ -3,9 +3,12 @@ every bundled example and a HELLAS scenario, Frame.words and Frame.returns equal
 flight.d64 / flight.hellas bytes and points.csv rows frame for frame (numbers to the decimals
 points.csv prints, compared column by column with numpy); co-simulation with pushed poses; input
 errors as ValueError, file errors as OSError, frames out of range as IndexError; arrays that keep
-their frame alive; run() with a progress callback."""
+their frame alive; run() with a progress callback; FrameDetector's warnings equal the
+detections.csv rows `owsim run --outputs detections` writes."""
+import json
 import os
 import subprocess
+import sys
 import tempfile
 import unittest
 from pathlib import Path
@@ -197,6 +200,59 @@ class Module(unittest.TestCase):
                 owsim.view(empty)
         with self.assertRaises(OSError):
             owsim.view(Path(empty, "gone"))
+
+
+class Detector(unittest.TestCase):
+    def test_warnings_are_the_runs_detections_csv(self):
+        approach = SOURCE / "tests/data/detector/approach.yaml"
+        with tempfile.TemporaryDirectory() as tmp:
+            subprocess.run([CLI, "run", str(approach), "--frames", "40", "--outputs",
+                            "detections", "--quiet", "--out", tmp], check=True)
+            written = Path(tmp, "detections.csv").read_text()
+        sim = owsim.Simulation(str(approach), frames=40)
+        detector = owsim.FrameDetector(sim)
+        text = owsim.FrameDetector.csv_header
+        classes = []
+        for frame in sim:
+            warnings = detector.add_frame(frame)
+            rows = detector.csv_rows()
+            self.assertEqual(len(warnings), rows.count("\n"))
+            for warning, row in zip(warnings, rows.splitlines()):
+                cells = row.split(",")
+                self.assertEqual(int(cells[0]), warning["frame"])
+                self.assertEqual(int(cells[2]), warning["track"])
+                self.assertEqual(cells[3], owsim.OBSTACLE_CLASS_NAMES[warning["class"]])
+                np.testing.assert_allclose([float(c) for c in cells[4:7]], warning["enu_m"],
+                                           atol=5e-4)
+                self.assertEqual(int(cells[11]), warning["points"])
+                classes.append(cells[3])
+            text += rows
+        self.assertEqual(text, written)
+        self.assertIn("wire", classes)
+        with self.assertRaisesRegex(ValueError, "given after frame"):
+            detector.add_frame(sim.frame(39))
+
+    def test_your_detector_in_the_loop_beside_the_reference_scored(self):
+        approach = SOURCE / "tests/data/detector/approach.yaml"
+        script = SOURCE / "examples/detectors/in_the_loop.py"
+        with tempfile.TemporaryDirectory() as tmp:
+            done = subprocess.run([sys.executable, str(script), str(approach), tmp, "60"],
+                                  check=True, capture_output=True, text=True)
+            commands = done.stdout.splitlines()
+            self.assertEqual(len(commands), 2)
+            subprocess.run([CLI, "run", str(approach), "--frames", "60", "--outputs",
+                            "detections", "--quiet", "--out", str(Path(tmp, "inline"))],
+                           check=True)
+            self.assertEqual(Path(tmp, "reference.csv").read_text(),
+                             Path(tmp, "inline", "detections.csv").read_text())
+            for command in commands:
+                words = command.split()
+                self.assertEqual(words[:2], ["owsim", "score"])
+                subprocess.run([CLI] + words[1:] + ["--quiet"], check=True)
+            score = json.loads(Path(tmp, "score_reference", "score.json").read_text())
+            warned = {o["id"]: o["warned_class"] for o in score["objects"] if o["in_view"]}
+            self.assertIn("wire", warned.values())
+            self.assertTrue(Path(tmp, "score_mine", "score.json").exists())
 
 
 if __name__ == "__main__":
