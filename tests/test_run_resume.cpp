@@ -177,6 +177,28 @@ TEST(RunResume, KilledRunResumesToTheUninterruptedBytes) {
   EXPECT_FALSE(fs::exists(run_checkpoint_path(work / "resumed")));
 }
 
+// The detector's state is no checkpoint of its own: a resumed run replays the words it kept
+// through the detector, so detections.csv is the uninterrupted run's bytes (issue 69).
+TEST(RunResume, KilledRunResumesToTheUninterruptedDetections) {
+  const TempDir work("owsim_run_resume");
+  const std::vector<std::string> outputs = {"--outputs", "d64,detections"};
+  const test::CliResult reference = run_cli(run_arguments("reference", "2", outputs), work.path());
+  ASSERT_EQ(reference.exit_status, 0) << reference.command << "\n" << reference.err;
+  const std::int64_t done =
+      run_and_kill(run_arguments("resumed", "1", outputs), work.path(), "resumed");
+  ASSERT_GE(done, 1);
+  ASSERT_LT(done, std::stoll(kFrames));
+  EXPECT_FALSE(fs::exists(work / "resumed" / "detections.csv"));
+
+  std::vector<std::string> again = outputs;
+  again.push_back("--resume");
+  const test::CliResult resumed = run_cli(run_arguments("resumed", "2", again), work.path());
+  ASSERT_EQ(resumed.exit_status, 0) << resumed.command << "\n" << resumed.err;
+  EXPECT_GT(fs::file_size(work / "reference" / "detections.csv"), 1000u);
+  expect_same_bytes(work / "reference" / "detections.csv", work / "resumed" / "detections.csv");
+  expect_same_bytes(work / "reference" / "flight.d64", work / "resumed" / "flight.d64");
+}
+
 TEST(RunResume, ResumeWithAnotherSeedIsRefusedAndKeepsTheCheckpoint) {
   const TempDir work("owsim_run_resume");
   ASSERT_GE(run_and_kill(run_arguments("out", "2"), work.path(), "out"), 1);
