@@ -234,8 +234,8 @@ TEST(DetectionFlight, WarningRocPlotsTheWarningPdAgainstFalseWarningsPerHour) {
     EXPECT_DOUBLE_EQ(row.at("false_warnings_per_hour").get<double>(),
                      row.at("false_warnings").get<double>() / row.at("flight_hours").get<double>());
   }
-  // Half the default threshold lets ~3,500 false returns a second through: they cost false
-  // warnings (and buy Pd); at the default's neighbourhood there are none.
+  // 0.002 instead of the default 0.0029 lets ~3,500 false returns a second through: they cost
+  // false warnings (and buy Pd); near the default there are none.
   const nlohmann::json& low = report.at("rows")[0];
   const nlohmann::json& high = report.at("rows")[1];
   EXPECT_EQ(low.at("value"), 0.002);
