@@ -151,4 +151,32 @@ void find_clusters(std::span<const ObstaclePoint> points, std::span<const std::u
   });
 }
 
+void find_clusters_without(std::span<const ObstaclePoint> points,
+                           std::span<const std::uint8_t> skip,
+                           std::span<const PointCluster> all, const DetectorParams& params,
+                           ClusterScratch& scratch, std::vector<PointCluster>& out) {
+  out.clear();
+  // Points of the clusters that lose none stay as they are; the others' are clustered again.
+  std::vector<std::uint8_t>& left_out = scratch.left_out;
+  left_out.assign(points.size(), 1);
+  bool any_again = false;
+  for (const PointCluster& cluster : all) {
+    const bool loses = std::any_of(cluster.points.begin(), cluster.points.end(),
+                                   [&](std::uint32_t p) { return skip[p] != 0; });
+    if (!loses) {
+      out.push_back(cluster);
+      continue;
+    }
+    any_again = true;
+    for (const std::uint32_t p : cluster.points) left_out[p] = skip[p];
+  }
+  if (!any_again) return;
+  std::vector<PointCluster>& again = scratch.again;
+  find_clusters(points, left_out, params, scratch, again);
+  for (PointCluster& cluster : again) out.push_back(std::move(cluster));
+  std::sort(out.begin(), out.end(), [](const PointCluster& a, const PointCluster& b) {
+    return a.points.front() < b.points.front();
+  });
+}
+
 }  // namespace owsim

@@ -21,12 +21,24 @@ struct PointCluster {
 // Reused buffers of find_clusters.
 struct ClusterScratch {
   std::vector<std::uint32_t> parent;
+  std::vector<std::uint8_t> left_out;  // find_clusters_without's
+  std::vector<PointCluster> again;
 };
 
 // The clusters of the points with `skip[p] == 0`, ordered by their first point.
 void find_clusters(std::span<const ObstaclePoint> points, std::span<const std::uint8_t> skip,
                    const DetectorParams& params, ClusterScratch& scratch,
                    std::vector<PointCluster>& out);
+
+// find_clusters(points, skip, …) from `all`, the clusters of the same points with nothing skipped:
+// a cluster of `all` with no skipped point is one of the result as it is (taking points away only
+// splits clusters and never links them: each group keeps its cells, boxes only shrink and ranges
+// only grow), so only the clusters that lose points are clustered again. The same clusters, in the
+// same order, as find_clusters.
+void find_clusters_without(std::span<const ObstaclePoint> points,
+                           std::span<const std::uint8_t> skip,
+                           std::span<const PointCluster> all, const DetectorParams& params,
+                           ClusterScratch& scratch, std::vector<PointCluster>& out);
 
 // The square of the horizontal gap between two plan boxes (0 when they overlap).
 [[nodiscard]] double plan_gap_squared_m2(const Eigen::Vector2d& lo_a, const Eigen::Vector2d& hi_a,

@@ -175,10 +175,10 @@ void ObstacleDetector::classify(const Eigen::Vector3d& aircraft) {
   // house alone holds none: the Hough transform need not see the wood), then the other points'
   // clusters (the wires' "other objects").
   std::vector<std::uint8_t> skip(points.size(), 0);
-  find_clusters(points, skip, params_, cluster_scratch_, clusters_);
+  find_clusters(points, skip, params_, cluster_scratch_, all_clusters_);
   std::vector<std::uint8_t> eligible(points.size(), 0);
   std::vector<Eigen::Vector3d> member_at;
-  for (const PointCluster& cluster : clusters_) {
+  for (const PointCluster& cluster : all_clusters_) {
     if (cluster.points.size() >= static_cast<std::size_t>(params_.min_points)) {
       member_at.clear();
       for (const std::uint32_t p : cluster.points) member_at.push_back(points[p].enu_m);
@@ -190,7 +190,7 @@ void ObstacleDetector::classify(const Eigen::Vector3d& aircraft) {
   for (const WireCandidate& wire : wires_) {
     for (const std::uint32_t p : wire.points) skip[p] = 1;
   }
-  find_clusters(points, skip, params_, cluster_scratch_, clusters_);
+  find_clusters_without(points, skip, all_clusters_, params_, cluster_scratch_, clusters_);
   const auto least = static_cast<std::size_t>(params_.min_points);
   std::vector<std::uint32_t> others;
   for (const PointCluster& cluster : clusters_) {
@@ -225,7 +225,7 @@ void ObstacleDetector::classify(const Eigen::Vector3d& aircraft) {
       if (!accepted[w]) continue;
       for (const std::uint32_t p : wires_[w].points) skip[p] = 1;
     }
-    find_clusters(points, skip, params_, cluster_scratch_, clusters_);
+    find_clusters_without(points, skip, all_clusters_, params_, cluster_scratch_, clusters_);
   }
   for (std::size_t w = 0; w < wires_.size(); ++w) {
     if (!accepted[w]) continue;

@@ -79,7 +79,8 @@ class ObstacleDetector {
   WireSearchScratch wire_scratch_;
   ClusterScratch cluster_scratch_;
   std::vector<WireCandidate> wires_;
-  std::vector<PointCluster> clusters_;
+  std::vector<PointCluster> all_clusters_;  // the window's, wires' points included
+  std::vector<PointCluster> clusters_;      // without the wires' points
   std::vector<FrameObstacle> obstacles_;
   std::vector<ObstacleWarning> warnings_;
 };

@@ -139,9 +139,11 @@ void find_wire_candidates(std::span<const ObstaclePoint> points,
                      aircraft_en.y();
     for (int k = 0; k < kDirections; ++k) {
       const Direction& d = table[static_cast<std::size_t>(k)];
-      const int bin = static_cast<int>(std::floor((x * d.cos_t + y * d.sin_t + offset_zero) /
-                                                  kOffsetBinM));
-      if (bin < 0 || bin >= offsets) continue;
+      // ⌊·⌋ of a value ≥ 0 by truncation; one < 0 is off the table.
+      const double at_m = (x * d.cos_t + y * d.sin_t + offset_zero) / kOffsetBinM;
+      if (!(at_m >= 0.0)) continue;
+      const int bin = static_cast<int>(at_m);
+      if (bin >= offsets) continue;
       const auto at = static_cast<std::uint32_t>(k * offsets + bin);
       std::uint16_t& v = scratch.votes[at];
       if (v == 0) scratch.touched.push_back(at);
@@ -176,7 +178,11 @@ void find_wire_candidates(std::span<const ObstaclePoint> points,
 
   // 3–4. Each peak's points, chained along its line.
   scratch.taken.assign(points.size(), 0);
-  for (std::uint32_t p = 0; p < points.size(); ++p) scratch.taken[p] = eligible[p] ? 0 : 1;
+  scratch.open.clear();
+  for (std::uint32_t p = 0; p < points.size(); ++p) {
+    scratch.taken[p] = eligible[p] ? 0 : 1;
+    if (eligible[p]) scratch.open.push_back(p);
+  }
   std::vector<Chain> chains;
   for (const Peak& peak : peaks) {
     const auto k = static_cast<std::size_t>(peak.bin / static_cast<std::uint32_t>(offsets));
@@ -188,21 +194,26 @@ void find_wire_candidates(std::span<const ObstaclePoint> points,
       return (p.enu_m.x() - aircraft_en.x()) * d.cos_t + (p.enu_m.y() - aircraft_en.y()) * d.sin_t -
              offset;
     };
-    // Refine the offset to the median of the points within a bin of the band.
+    // Refine the offset to the median of the points within a bin of the band. The points near the
+    // line once: the refined line moves by at most band + half a bin, so its inliers lie within
+    // 2 × band + a bin of the peak's line.
+    const double half_bin = 0.5 * kOffsetBinM;
+    const double reach = 2.0 * params.wire_band_m + 2.0 * half_bin;
+    scratch.near.clear();
     scratch.offsets.clear();
-    for (std::uint32_t p = 0; p < points.size(); ++p) {
+    for (const std::uint32_t p : scratch.open) {
       if (scratch.taken[p]) continue;
       const double t = lateral(points[p]);
-      if (std::abs(t) <= params.wire_band_m + 0.5 * kOffsetBinM) scratch.offsets.push_back(t);
+      if (std::abs(t) > reach) continue;
+      scratch.near.push_back(p);
+      if (std::abs(t) <= params.wire_band_m + half_bin) scratch.offsets.push_back(t);
     }
     if (scratch.offsets.size() < static_cast<std::size_t>(params.min_points)) continue;
     offset += median_of(scratch.offsets);
 
     scratch.inliers.clear();
-    for (std::uint32_t p = 0; p < points.size(); ++p) {
-      if (!scratch.taken[p] && std::abs(lateral(points[p])) <= params.wire_band_m) {
-        scratch.inliers.push_back(p);
-      }
+    for (const std::uint32_t p : scratch.near) {
+      if (std::abs(lateral(points[p])) <= params.wire_band_m) scratch.inliers.push_back(p);
     }
     if (scratch.inliers.size() < static_cast<std::size_t>(params.min_points)) continue;
     const Eigen::Vector2d along(-d.sin_t, d.cos_t);

@@ -48,6 +48,8 @@ struct WireSearchScratch {
   std::vector<std::uint8_t> taken;
   std::vector<std::uint32_t> inliers;
   std::vector<double> offsets;
+  std::vector<std::uint32_t> open;  // the eligible points, by index
+  std::vector<std::uint32_t> near;  // a peak's open points near its line
 };
 
 // The wire candidates among the `points` with `eligible[p] != 0` (the others neither vote nor join
