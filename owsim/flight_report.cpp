@@ -17,6 +17,7 @@
 #include "io/scenario/scenario_loader.hpp"
 #include "io/scenario/scene_builder.hpp"
 #include "io/trajectory/trajectory_loader.hpp"
+#include "owsim/report_warnings.hpp"
 #include "owsim/version.hpp"
 #include "sensor/range_counter.hpp"
 #include "sensor/scan_pattern.hpp"
@@ -28,6 +29,8 @@ namespace {
 using nlohmann::json;
 
 constexpr std::size_t kMaxCylinders = 20'000;
+// Warning tracks the page draws (a long flight over woods warns of thousands of trees).
+constexpr std::size_t kMaxWarningTracks = 20'000;
 constexpr std::size_t kMaxTrajectoryRows = 20'000;
 constexpr std::size_t kMaxScenarioFrames = 1'000'000;  // ~4 days of frames: a bound, not a limit
 
@@ -204,6 +207,27 @@ class PageAssembly {
     meta_["score"] = evidence["score"];
   }
 
+  // The reference detector's (or any detector's) warnings, when the folder holds detections.csv
+  // and the scenario is known (its origin places WGS-84 rows; its frame period dates them).
+  void add_warnings() {
+    meta_["warnings"] = nullptr;
+    const std::filesystem::path csv = folder_.directory / "detections.csv";
+    std::error_code error;
+    if (!std::filesystem::is_regular_file(csv, error)) return;
+    if (!scenario_ || frames_hint_ < 1) {
+      note(
+          "detections.csv is not drawn: its warnings need the flight's scenario (--scenario) and "
+          "summary.json's frame count.");
+      return;
+    }
+    meta_["warnings"] = report_warnings_json(csv, *scenario_, frames_hint_, kMaxWarningTracks);
+    const std::size_t total = meta_["warnings"]["tracks_total"].get<std::size_t>();
+    if (total > kMaxWarningTracks) {
+      note("Warnings: the first " + thousands(kMaxWarningTracks) + " of " + thousands(total) +
+           " tracks drawn.");
+    }
+  }
+
   void add_scene() {
     meta_["scene"] = nullptr;
     if (!options_.scenario) {
@@ -350,6 +374,7 @@ FlightReport write_flight_report(const std::filesystem::path& folder,
   page.add_summary();
   page.add_evidence();
   page.add_scene();
+  page.add_warnings();
   page.add_trajectory();
   page.read_points();
   page.add_frames();

@@ -4,6 +4,7 @@
 // map's zoom and furniture, the 3D view's orbit; screenshots of each panel in SHOT_DIR.
 //   node tests/web/report_page.mjs REPORT.html SHOT_DIR [--expect-frames] [--expect-objects]
 //        [--expect-wires] [--expect-empty] [--expect-evidence] [--expect-roc VALUES] [--expect-noise]
+//        [--expect-warnings]
 //        [--max-ready-ms N]
 // Prints one JSON line of measurements; exits non-zero with the failed checks listed.
 import { createRequire } from 'node:module';
@@ -215,6 +216,17 @@ if (has('--expect-frames')) {
   check(afterPlay !== best.index, 'play advances the frames');
   await shoot('#frames', 'frame-player');
   check(/wire/.test(await page.locator('#frame-legend').innerText()), 'frame legend');
+  if (has('--expect-warnings')) {
+    // The detector's warnings of each frame under the player: some frame warns of a wire.
+    let wireFrame = -1;
+    for (let i = 0; i <= max && wireFrame < 0; i += Math.max(1, Math.floor(max / 12))) {
+      await slider.fill(String(i));
+      const text = await page.locator('#frame-warnings').innerText();
+      check(/^Warnings: /.test(text), `frame warnings line: ${text}`);
+      if (/\d+ wire \(track /.test(text)) wireFrame = i;
+    }
+    check(wireFrame >= 0, 'a frame lists a wire warning with its track');
+  }
 } else {
   check(await page.locator('#frames .empty').count() === 1, 'frame player says why it is empty');
 }
@@ -225,6 +237,11 @@ check(/north up/.test(await mapCanvas.getAttribute('aria-label')), 'map says nor
 const scale0 = Number(await mapCanvas.getAttribute('data-scale'));
 const bar0 = Number(await mapCanvas.getAttribute('data-scale-bar'));
 const map0 = await shoot('#map', 'map');
+if (has('--expect-warnings')) {
+  const drawn = JSON.parse((await mapCanvas.getAttribute('data-warnings')) || '{}');
+  check(drawn.wire > 0 && drawn.tree > 0, `the map marks warned wires and trees (${JSON.stringify(drawn)})`);
+  check(/Warnings \(detections.csv/.test(await page.locator('#map .caption').innerText()), 'the map says what its warning marks are');
+}
 check(pixelStats(map0, [255, 0, 255]).near > 50 || !has('--expect-objects'), 'flight path on the map');
 await page.click('#map-zoom-in');
 await page.click('#map-zoom-in');

@@ -18,7 +18,8 @@ page() { node "$root/tests/web/report_page.mjs" "$@"; }
 
 # 1. A simulated run: summary, ground truth, frames with wire marks, map, 3D with the scene, and
 #    the detection evidence of its wires, of the same flight at two thresholds (owsim roc over a
-#    small sweep, written into the run's folder) and of the reference detector.
+#    small sweep, written into the run's folder) and of the numpy example detector; the reference
+#    detector's warnings (owsim detect) under the frame player and on the map.
 "$owsim" run examples/corridor.yaml --out "$out/corridor" --frames 90 --quiet
 "$owsim" pd "$out/corridor" --class wire --quiet
 mkdir -p "$out/thresholds"
@@ -30,9 +31,10 @@ printf '%s\n' 'base: corridor.yaml' 'count: 4' 'seed: 3' 'outputs: summary,truth
 "$owsim" roc "$out/thresholds/campaign" --range 400:800 --out "$out/corridor" --quiet
 /usr/bin/python3 examples/detectors/elevated_returns.py "$out/corridor" "$out/corridor_detections.csv"
 "$owsim" score "$out/corridor" --detections "$out/corridor_detections.csv" --quiet
+"$owsim" detect "$out/corridor" --quiet
 "$owsim" view "$out/corridor" --scenario examples/corridor.yaml --quiet
 page "$out/corridor/report.html" "$shots/corridor" --expect-frames --expect-objects --expect-wires \
-  --expect-evidence --expect-roc 2
+  --expect-evidence --expect-roc 2 --expect-warnings
 
 # 2. Its words decoded without labels, viewed without the scenario: what real data gives.
 "$owsim" decode "$out/corridor/flight.d64" --scenario examples/corridor.yaml --no-labels \

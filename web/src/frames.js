@@ -36,6 +36,10 @@ export function framesSection(meta, planes) {
   const play = el('button', { id: 'frame-play', type: 'button' }, 'Play');
   const label = el('div', { id: 'frame-label', class: 'frame-label' });
   const hover = el('div', { id: 'frame-hover', class: 'hover' }, 'Point at a cell for its fiber, angles and range.');
+  // The detector's warnings of the frame (detections.csv: a track warns in every frame from its
+  // first report to its last), by class.
+  const warningTracks = meta.warnings ? meta.warnings.tracks : null;
+  const warned = el('div', { id: 'frame-warnings', class: 'frame-warnings' });
   const legend = el('div', { class: 'legend', id: 'frame-legend' },
     ...MARKED.map((name) => {
       const s = el('span', { class: 'swatch' });
@@ -43,7 +47,8 @@ export function framesSection(meta, planes) {
       return el('span', { class: 'legend-item' }, s, name);
     }),
     (() => { const s = el('span', { class: 'swatch' }); s.style.background = '#000'; return el('span', { class: 'legend-item' }, s, 'no return'); })());
-  section.append(el('div', { class: 'controls' }, play, slider, label), canvas, legend, hover);
+  section.append(el('div', { class: 'controls' }, play, slider, label), canvas, legend, hover,
+    ...(warningTracks ? [warned] : []));
 
   const betaAt = (column) => f.beta_first_deg + (column + 0.5) / lines * (f.beta_last_deg - f.beta_first_deg);
   let current = 0;
@@ -136,6 +141,16 @@ export function framesSection(meta, planes) {
     }
     label.textContent = text;
     canvas.dataset.frame = String(frame);
+    if (warningTracks) {
+      const byClass = {};
+      for (const w of warningTracks) {
+        if (w.first_frame <= frame && frame <= w.last_frame) (byClass[w.class] ||= []).push(w.track);
+      }
+      const names = Object.keys(byClass).sort();
+      warned.textContent = names.length === 0 ? 'Warnings: none in this frame.'
+        : `Warnings: ${names.map((k) => `${byClass[k].length} ${k} (track ${byClass[k].join(', ')})`).join(' · ')}`;
+      warned.dataset.count = String(names.reduce((n, k) => n + byClass[k].length, 0));
+    }
   }
 
   canvas.addEventListener('mousemove', (event) => {

@@ -9,6 +9,8 @@ const HEIGHT = 640;
 // ground, building, unknown, fog, tree, pole, wire; false returns (noise, 6) are no places, as on
 // the quick-look map: not drawn.
 const DRAW_ORDER = [3, 4, 255, 5, 2, 1, 0];
+// The warnings' marks (detections.csv), pure colours the tests find on the canvas.
+const WARNING_COLOURS = { wire: '#ff2020', pole: '#ffffff', tree: '#40ff40' };
 
 export function mapSection(meta, points, step) {
   const section = el('section', { id: 'map' }, el('h2', {}, 'Map'));
@@ -21,7 +23,8 @@ export function mapSection(meta, points, step) {
   const reset = el('button', { type: 'button', id: 'map-reset' }, 'Reset');
   const cursor = el('span', { id: 'map-cursor', class: 'hover' }, 'E — N — m');
   section.append(el('div', { class: 'controls' }, zoomIn, zoomOut, reset, cursor), canvas,
-    el('p', { class: 'caption' }, 'East right, north up; coordinates in metres east (E) and north (N) of the scenario origin; false returns (noise) are not drawn. Wheel or buttons zoom, drag pans.'));
+    el('p', { class: 'caption' }, 'East right, north up; coordinates in metres east (E) and north (N) of the scenario origin; false returns (noise) are not drawn. Wheel or buttons zoom, drag pans.' +
+      (meta.warnings ? ` Warnings (detections.csv, ${meta.warnings.tracks_total} tracks): × wire, ◇ pole, △ tree, where each track was last reported.` : '')));
 
   // The extent: returns, flight path and scene objects.
   let e0 = Infinity, e1 = -Infinity, n0 = Infinity, n1 = -Infinity;
@@ -110,6 +113,37 @@ export function mapSection(meta, points, step) {
     }
   }
 
+  // The detector's warned tracks where they were last reported, by class: a wire as a red bar
+  // across, a pole as a white diamond, a tree as a green triangle (other classes: a grey ring).
+  const warnings = meta.warnings ? meta.warnings.tracks : [];
+  function drawWarnings() {
+    ctx.lineWidth = 2;
+    const drawn = { wire: 0, pole: 0, tree: 0, other: 0 };
+    for (const w of warnings) {
+      const [x, y] = toPx(w.e_m, w.n_m);
+      if (x < -8 || y < -8 || x > WIDTH + 8 || y > HEIGHT + 8) continue;
+      drawn[w.class in drawn ? w.class : 'other']++;
+      ctx.beginPath();
+      if (w.class === 'wire') {
+        ctx.strokeStyle = WARNING_COLOURS.wire;
+        ctx.moveTo(x - 6, y - 6); ctx.lineTo(x + 6, y + 6);
+        ctx.moveTo(x - 6, y + 6); ctx.lineTo(x + 6, y - 6);
+      } else if (w.class === 'pole') {
+        ctx.strokeStyle = WARNING_COLOURS.pole;
+        ctx.moveTo(x, y - 6); ctx.lineTo(x + 6, y); ctx.lineTo(x, y + 6); ctx.lineTo(x - 6, y); ctx.closePath();
+      } else if (w.class === 'tree') {
+        ctx.strokeStyle = WARNING_COLOURS.tree;
+        ctx.moveTo(x, y - 6); ctx.lineTo(x + 6, y + 5); ctx.lineTo(x - 6, y + 5); ctx.closePath();
+      } else {
+        ctx.strokeStyle = '#aaa';
+        ctx.arc(x, y, 5, 0, 2 * Math.PI);
+      }
+      ctx.stroke();
+    }
+    ctx.lineWidth = 1;
+    canvas.dataset.warnings = JSON.stringify(drawn);  // what the tests read
+  }
+
   function drawTrajectory() {
     if (!traj || traj.e_m.length === 0) return;
     ctx.strokeStyle = '#ff00ff';
@@ -170,6 +204,7 @@ export function mapSection(meta, points, step) {
   function draw() {
     drawPoints();
     drawScene();
+    drawWarnings();
     drawTrajectory();
     drawFurniture();
     canvas.dataset.scale = String(view.scale);
