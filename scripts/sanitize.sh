@@ -11,7 +11,8 @@
 # but the tests' own brute-force loops then run 10-20x slower (RaySegment's 9 s -> 197 s). The
 # libraries, where the suite spends its time, stay at -O1.
 # The modules are shared libraries here (OWSIM_MODULE_LIBRARY_TYPE): linked statically, each of the
-# ~120 instrumented test programs held its own ~60 MB copy of them, 7.4 GB of build tree in all.
+# ~120 instrumented test programs (one per test file then; 11 since issue 73) held its own ~60 MB
+# copy of them, 7.4 GB of build tree in all.
 # OWSIM_SANITIZE_EXCLUDE is a ctest regex of tests left out (default: none).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
