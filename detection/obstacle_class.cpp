@@ -1,6 +1,5 @@
 #include "detection/obstacle_class.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -21,6 +20,17 @@ std::string_view to_string(ObstacleClass kind) {
   return "none";
 }
 
+Eigen::Vector2d principal_axis(double a, double b, double c) {
+  // The larger eigenvalue of [[a, b], [b, c]] and its eigenvector, from the row that is the
+  // better conditioned of the two (λ − c ≥ λ − a when a ≥ c).
+  const double half_difference = 0.5 * (a - c);
+  const double lambda = 0.5 * (a + c) + std::hypot(half_difference, b);
+  Eigen::Vector2d axis = a >= c ? Eigen::Vector2d(lambda - c, b) : Eigen::Vector2d(b, lambda - a);
+  const double norm = axis.norm();
+  if (!(norm > 0.0) || !std::isfinite(norm)) return Eigen::Vector2d::UnitX();
+  return axis / norm;
+}
+
 PlanExtent plan_extent(std::span<const Eigen::Vector3d> points) {
   PlanExtent out;
   if (points.empty()) return out;
@@ -32,10 +42,7 @@ PlanExtent plan_extent(std::span<const Eigen::Vector3d> points) {
     const Eigen::Vector2d d = p.head<2>() - mean;
     covariance += d * d.transpose();
   }
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> solver(covariance);
-  Eigen::Vector2d axis = solver.eigenvectors().col(1);  // eigenvalues ascending
-  if (!axis.allFinite() || axis.norm() == 0.0) axis = Eigen::Vector2d::UnitX();
-  axis.normalize();
+  Eigen::Vector2d axis = principal_axis(covariance(0, 0), covariance(0, 1), covariance(1, 1));
   // One orientation whatever the solver returns: east-pointing, or north-pointing when due north.
   if (axis.x() < 0.0 || (axis.x() == 0.0 && axis.y() < 0.0)) axis = -axis;
   const Eigen::Vector2d across(-axis.y(), axis.x());

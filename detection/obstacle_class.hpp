@@ -39,6 +39,10 @@ struct PlanExtent {
 };
 [[nodiscard]] PlanExtent plan_extent(std::span<const Eigen::Vector3d> points);
 
+// The unit eigenvector of the larger eigenvalue of the symmetric matrix [[a, b], [b, c]] (a plan
+// covariance), in closed form; east when the matrix has no preferred direction.
+[[nodiscard]] Eigen::Vector2d principal_axis(double a, double b, double c);
+
 // What the rules measure of one obstacle.
 struct ObstacleShape {
   double length_m = 0.0;

@@ -5,6 +5,8 @@
 // `detector:` keys' ranges equal to the scenario's table.
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
+
 #include <cmath>
 #include <random>
 #include <vector>
@@ -67,6 +69,30 @@ TEST(ObstacleRules, PlanExtentOfARotatedRectangle) {
   EXPECT_NEAR(extent.length_m, 40.0, 0.1);
   EXPECT_NEAR(extent.width_m, 4.0, 0.05);
   EXPECT_NEAR(std::abs(extent.axis.dot(Eigen::Vector2d(std::cos(t), std::sin(t)))), 1.0, 1e-4);
+}
+
+// The closed-form principal axis against Eigen's own eigensolver over random plan covariances, and
+// the degenerate cases it must settle.
+TEST(ObstacleRules, PrincipalAxisIsTheEigensolversLargerEigenvector) {
+  std::mt19937_64 rng(69);
+  std::uniform_real_distribution<double> spread(-50.0, 50.0);
+  for (int trial = 0; trial < 2000; ++trial) {
+    Eigen::Matrix2d m;
+    const Eigen::Vector2d u(spread(rng), spread(rng)), v(spread(rng), spread(rng));
+    m = u * u.transpose() + 0.1 * v * v.transpose();  // positive semi-definite, as covariances are
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> solver(m);
+    if (solver.eigenvalues()(1) - solver.eigenvalues()(0) < 1e-6 * solver.eigenvalues()(1)) {
+      continue;  // no preferred direction to compare
+    }
+    const Eigen::Vector2d expected = solver.eigenvectors().col(1);
+    const Eigen::Vector2d axis = principal_axis(m(0, 0), m(0, 1), m(1, 1));
+    EXPECT_NEAR(axis.norm(), 1.0, 1e-12);
+    EXPECT_NEAR(std::abs(axis.dot(expected)), 1.0, 1e-9) << m;
+  }
+  EXPECT_EQ(principal_axis(4.0, 0.0, 1.0), Eigen::Vector2d(1.0, 0.0));
+  EXPECT_EQ(principal_axis(1.0, 0.0, 4.0), Eigen::Vector2d(0.0, 1.0));
+  EXPECT_EQ(principal_axis(2.0, 0.0, 2.0), Eigen::Vector2d::UnitX());  // isotropic
+  EXPECT_EQ(principal_axis(0.0, 0.0, 0.0), Eigen::Vector2d::UnitX());  // one point
 }
 
 TEST(GroundMap, TheLowestPairOfAgreeingReturnsOfACellIsItsGround) {
