@@ -48,22 +48,17 @@ void run_detect(const DetectOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   DetectionReport total;
   const std::vector<DetectJob> jobs = detect_jobs(options);
-  for (const DetectJob& job : jobs) {
-    const DetectionReport report = detect_run_folder(job.run, job.csv);
-    total.frames += report.frames;
-    total.returns += report.returns;
-    total.warnings += report.warnings;
-    total.tracks += report.tracks;
-  }
+  for (const DetectJob& job : jobs) total += detect_run_folder(job.run, job.csv);
   const double wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (options.quiet) return;
+  const std::string written = jobs.size() == 1 ? jobs.front().csv.string()
+                                               : jobs.front().csv.parent_path().string() + "…";
   fmt::print(stderr,
              "{} flight{}, {} frames, {} returns: {} warnings from {} tracks in {:.2f} s; written "
              "to {}\n",
              jobs.size(), jobs.size() == 1 ? "" : "s", total.frames, total.returns, total.warnings,
-             total.tracks, wall_s,
-             jobs.size() == 1 ? jobs.front().csv.string() : jobs.front().csv.parent_path().string() + "…");
+             total.tracks, wall_s, written);
 }
 
 }  // namespace

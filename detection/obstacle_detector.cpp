@@ -148,20 +148,17 @@ std::span<const ObstacleWarning> ObstacleDetector::add_frame(const DetectorFrame
     warning.track = track.id;
     warning.kind = track.kind;
     double best = std::numeric_limits<double>::infinity();
-    double top = -std::numeric_limits<double>::infinity();
     for (const Eigen::Vector3d& p : track.remembered) {
       const double d = (p - aircraft).squaredNorm();
       if (d < best) {
         best = d;
         warning.nearest_enu_m = p;
       }
-      top = std::max(top, p.z());
     }
     warning.range_m = std::sqrt(best);
-    const PlanExtent extent = plan_extent(track.remembered);
-    warning.length_m = extent.length_m;
-    warning.width_m = extent.width_m;
-    warning.height_m = top - track.base_u_m;
+    warning.length_m = track.extent.length_m;
+    warning.width_m = track.extent.width_m;
+    warning.height_m = track.hi.z() - track.base_u_m;
     warning.points = track.points_now;
     warnings_.push_back(warning);
   }

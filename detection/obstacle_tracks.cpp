@@ -32,13 +32,14 @@ struct Miss {
   double along_m;
 };
 
-Miss miss_of(const ObstacleTrack& track, const PlanExtent& line, const Eigen::Vector2d& centre,
-             const Eigen::Vector3d& p) {
+Miss miss_of(const ObstacleTrack& track, const Eigen::Vector3d& p) {
   if (!is_wire(track.kind)) {
     double best = std::numeric_limits<double>::infinity();
     for (const Eigen::Vector3d& r : track.remembered) best = std::min(best, (r - p).squaredNorm());
     return {std::sqrt(best), 0.0};
   }
+  const PlanExtent& line = track.extent;
+  const Eigen::Vector2d& centre = track.centre;
   const Eigen::Vector2d d = p.head<2>() - centre;
   const double s = d.dot(line.axis);
   const double across = std::abs(d.x() * line.axis.y() - d.y() * line.axis.x());
@@ -83,12 +84,20 @@ void ObstacleTracks::remember(ObstacleTrack& track, const Eigen::Vector3d& p) {
   track.remembered.push_back(p);
 }
 
+void ObstacleTracks::refresh_extent(ObstacleTrack& track) {
+  if (track.extent_points == track.remembered.size()) return;
+  track.extent = plan_extent(track.remembered);
+  track.centre = Eigen::Vector2d::Zero();
+  for (const Eigen::Vector3d& r : track.remembered) track.centre += r.head<2>();
+  track.centre /= static_cast<double>(track.remembered.size());
+  track.extent_points = track.remembered.size();
+}
+
 void ObstacleTracks::classify_remembered(ObstacleTrack& track) const {
   if (is_wire(track.kind) || track.remembered.empty()) return;
-  const PlanExtent extent = plan_extent(track.remembered);
   ObstacleShape shape;
-  shape.length_m = extent.length_m;
-  shape.width_m = extent.width_m;
+  shape.length_m = track.extent.length_m;
+  shape.width_m = track.extent.width_m;
   shape.height_m = track.hi.z() - track.base_u_m;
   shape.isolation_m = track.isolation_m;
   const ObstacleClass kind = solid_class(shape, params_);
@@ -119,17 +128,10 @@ void ObstacleTracks::update(std::span<const FrameObstacle> obstacles, double tim
                     (hi.array() + reach < track.lo.array()).any())) {
         continue;
       }
-      PlanExtent line;
-      Eigen::Vector2d centre = Eigen::Vector2d::Zero();
-      if (wire) {
-        line = plan_extent(track.remembered);
-        for (const Eigen::Vector3d& r : track.remembered) centre += r.head<2>();
-        centre /= static_cast<double>(track.remembered.size());
-      }
       double sum = 0.0;
       std::size_t near = 0, sampled = 0;
       for (std::size_t k = 0; k < obstacle.points.size(); k += step) {
-        const Miss miss = miss_of(track, line, centre, obstacle.points[k]);
+        const Miss miss = miss_of(track, obstacle.points[k]);
         sum += miss.distance_m;
         const double within = wire ? 2.0 * params_.wire_band_m + 0.1 * miss.along_m : reach;
         near += miss.distance_m <= within ? 1 : 0;
@@ -171,7 +173,9 @@ void ObstacleTracks::update(std::span<const FrameObstacle> obstacles, double tim
   }
   absorbed.resize(tracks_.size(), 0);  // the new tracks are kept
   for (std::size_t t = 0; t < tracks_.size(); ++t) {
-    if (!absorbed[t] && tracks_[t].points_now > 0) classify_remembered(tracks_[t]);
+    if (absorbed[t]) continue;
+    refresh_extent(tracks_[t]);
+    if (tracks_[t].points_now > 0) classify_remembered(tracks_[t]);
   }
   std::size_t kept = 0;
   for (std::size_t t = 0; t < tracks_.size(); ++t) {

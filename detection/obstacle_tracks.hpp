@@ -43,6 +43,11 @@ struct ObstacleTrack {
   std::vector<Eigen::Vector3d> remembered;
   std::unordered_set<std::uint64_t> voxels;  // of `remembered`
   Eigen::Vector3d lo = Eigen::Vector3d::Zero(), hi = Eigen::Vector3d::Zero();  // box
+  // The plan extent and plan centre of `remembered`, made again only when it has grown (after
+  // each update): what association, the class and the warning read of it.
+  PlanExtent extent;
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  std::size_t extent_points = 0;  // remembered.size() they are of
 };
 
 class ObstacleTracks {
@@ -59,6 +64,7 @@ class ObstacleTracks {
  private:
   void support(ObstacleTrack& track, const FrameObstacle& obstacle, double time_s);
   static void remember(ObstacleTrack& track, const Eigen::Vector3d& p);
+  static void refresh_extent(ObstacleTrack& track);
   void classify_remembered(ObstacleTrack& track) const;
 
   DetectorParams params_;

@@ -44,7 +44,7 @@ struct WireSearchScratch {
   std::vector<std::uint16_t> votes;    // all zero between calls
   std::vector<std::uint32_t> touched;  // the bins a call voted in, to zero them again
   std::vector<std::uint32_t> full;     // the bins that reached min_points votes
-  std::vector<std::uint64_t> cells;  // (plan cell key, point index) sorted
+  std::vector<std::uint64_t> cells;  // the eligible points' plan cells, sorted, each once
   std::vector<std::uint8_t> taken;
   std::vector<std::uint32_t> inliers;
   std::vector<double> offsets;

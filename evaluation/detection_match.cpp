@@ -10,11 +10,15 @@
 
 namespace owsim {
 
-DetectionMatcher::DetectionMatcher(const Scene& scene, double gate_m)
-    : scene_(scene), grid_(scene), gate_m_(gate_m) {
+void validate_gate_m(double gate_m) {
   if (!(gate_m > 0.0 && gate_m <= 1000.0)) {
     throw input_error("--gate-m", "must lie in (0, 1000] m");
   }
+}
+
+DetectionMatcher::DetectionMatcher(const Scene& scene, double gate_m)
+    : scene_(scene), grid_(scene), gate_m_(gate_m) {
+  validate_gate_m(gate_m);
 }
 
 std::optional<ObjectHit> DetectionMatcher::hit(const Eigen::Vector3d& enu_m) {

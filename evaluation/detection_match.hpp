@@ -24,9 +24,12 @@ struct ObjectHit {
   double distance_m = 0.0;   // to its surface
 };
 
+// owsim::Error naming --gate-m unless 0 < gate_m ≤ 1000 m.
+void validate_gate_m(double gate_m);
+
 class DetectionMatcher {
  public:
-  // `scene` must outlive this. Throws owsim::Error for a gate outside (0, 1000] m (--gate-m).
+  // `scene` must outlive this. Throws owsim::Error for a gate validate_gate_m refuses.
   DetectionMatcher(const Scene& scene, double gate_m);
   // The nearest object whose surface is within the gate of `enu_m`; none: a false alarm.
   [[nodiscard]] std::optional<ObjectHit> hit(const Eigen::Vector3d& enu_m);

@@ -88,16 +88,13 @@ FlightScore score_flight(const CampaignFlight& flight, const std::filesystem::pa
                               scenario.scan.start_s + facts.flight_s()};
   read_detections_csv(detections, flown, [&](const Detection& detection) {
     ++score.detections;
-    const std::optional<ObjectHit> found = matcher.hit(detection.enu_m);
-    const std::optional<std::uint32_t> hit =
-        found ? std::optional(found->object) : std::nullopt;
-    const double hit_distance = found ? found->distance_m : 0.0;
+    const std::optional<ObjectHit> hit = matcher.hit(detection.enu_m);
     const std::string true_class =
-        hit ? std::string(to_string(named_object_class(scene, *hit))) : std::string("none");
+        hit ? std::string(to_string(named_object_class(scene, hit->object))) : std::string("none");
     if (hit) {
-      std::optional<double>& first = first_hit_s[*hit];
+      std::optional<double>& first = first_hit_s[hit->object];
       if (!first || detection.time_s < *first) first = detection.time_s;
-      if (!detection.object_class.empty()) ++hit_classes[*hit][detection.object_class];
+      if (!detection.object_class.empty()) ++hit_classes[hit->object][detection.object_class];
     } else {
       ++score.false_alarms;
     }
@@ -113,8 +110,8 @@ FlightScore score_flight(const CampaignFlight& flight, const std::filesystem::pa
     }
     rows += ',' + csv_cell(detection.object_class) + ',' + csv_cell(detection.track) + ',';
     if (hit) {
-      rows += csv_cell(named_object_id(scene, *hit)) + ',' + true_class + ',';
-      append_csv_fixed(rows, hit_distance, 3);
+      rows += csv_cell(named_object_id(scene, hit->object)) + ',' + true_class + ',';
+      append_csv_fixed(rows, hit->distance_m, 3);
     } else {
       rows += ",,";
     }
@@ -243,9 +240,7 @@ void write_file(const std::filesystem::path& path, std::string_view text) {
 }  // namespace
 
 ScoreReport write_score_report(const ScoreOptions& options) {
-  if (!(options.gate_m > 0.0 && options.gate_m <= 1000.0)) {
-    throw input_error("--gate-m", "must lie in (0, 1000] m");
-  }
+  validate_gate_m(options.gate_m);
   validate(DetectionCriterion{}, options.bins, options.confidence);
   ScoreReport report;
   report.directory = options.out ? *options.out : options.folder;

@@ -7,7 +7,6 @@
 
 #include "evaluation/detection_match.hpp"
 #include "evaluation/detections_csv.hpp"
-#include "geometry/error.hpp"
 
 namespace owsim {
 
@@ -74,9 +73,7 @@ std::vector<WarningTally> count_flights_warnings(const std::filesystem::path& fo
                                                  std::span<FlightTracks> tracks,
                                                  const std::filesystem::path& detections,
                                                  double gate_m) {
-  if (!(gate_m > 0.0 && gate_m <= 1000.0)) {
-    throw input_error("--gate-m", "must lie in (0, 1000] m");
-  }
+  validate_gate_m(gate_m);
   const std::vector<std::filesystem::path> files = detections_files(folder, flights, detections);
   std::vector<WarningTally> tallies;
   for (std::size_t f = 0; f < flights.size(); ++f) {

@@ -32,6 +32,16 @@ FlightDetections::FlightDetections(const Scenario& scenario, const PoseSource& p
       file_(std::move(csv)),
       rows_(kDetectionsCsvHeader) {}
 
+DetectionReport& DetectionReport::operator+=(const DetectionReport& other) {
+  frames += other.frames;
+  pulses += other.pulses;
+  returns += other.returns;
+  warnings += other.warnings;
+  tracks += other.tracks;
+  detector_s += other.detector_s;
+  return *this;
+}
+
 void prepare_detector_frame(const Scenario& scenario, const PoseSource& poses, std::int64_t frame,
                             std::span<const std::uint64_t> milows_words,
                             std::span<const std::uint32_t> hellas_words,
@@ -49,8 +59,13 @@ void prepare_detector_frame(const Scenario& scenario, const PoseSource& poses, s
     decoded.words.assign(hellas_words.begin(), hellas_words.end());
   }
   decode_frame_words(scan, layout, decoded);
-  decoded_returns_enu(decoded, poses, scenario, out.returns);
-  out.aircraft_enu_m = poses.pose_at(decoded.sweep.start_s).position_enu_m;
+  place_detector_frame(scenario, poses, out);
+}
+
+void place_detector_frame(const Scenario& scenario, const PoseSource& poses,
+                          PreparedDetectorFrame& frame) {
+  decoded_returns_enu(frame.decoded, poses, scenario, frame.returns);
+  frame.aircraft_enu_m = poses.pose_at(frame.decoded.sweep.start_s).position_enu_m;
 }
 
 void FlightDetections::prepare(std::int64_t frame, std::span<const std::uint64_t> milows_words,
@@ -89,8 +104,7 @@ void FlightDetections::add_recording(
     const std::function<void(std::uint64_t, std::uint64_t)>& on_frame) {
   PreparedDetectorFrame frame;
   for (std::int64_t done = 0; done < frames && decoder.next(frame.decoded); ++done) {
-    decoded_returns_enu(frame.decoded, poses_, scenario_, frame.returns);
-    frame.aircraft_enu_m = poses_.pose_at(frame.decoded.sweep.start_s).position_enu_m;
+    place_detector_frame(scenario_, poses_, frame);
     add(frame);
     if (on_frame) on_frame(report_.frames, report_.pulses);
   }

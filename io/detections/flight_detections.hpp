@@ -36,6 +36,8 @@ struct DetectionReport {
   // Wall seconds inside the detector (ObstacleDetector::add_frame), on the one thread that runs
   // it: `owsim bench`'s detector figure. Not in any file.
   double detector_s = 0.0;
+  // Sums another flight's report into this one (tracks as counted in each flight).
+  DetectionReport& operator+=(const DetectionReport& other);
 };
 
 // What the detector reads of one frame, prepared on any thread.
@@ -54,6 +56,11 @@ void prepare_detector_frame(const Scenario& scenario, const PoseSource& poses, s
                             std::span<const std::uint32_t> hellas_words,
                             std::optional<std::uint32_t> hellas_header_word,
                             PreparedDetectorFrame& out);
+
+// `frame.decoded`'s returns placed by `poses` and the aircraft's position at its start: the rest of
+// what the detector reads (prepare_detector_frame's second half; a decoder's frames need only it).
+void place_detector_frame(const Scenario& scenario, const PoseSource& poses,
+                          PreparedDetectorFrame& frame);
 
 class FlightDetections {
  public:
