@@ -17,13 +17,10 @@
 namespace owsim {
 namespace {
 
-constexpr std::array<TraceApi, 4> kApis = {TraceApi::per_ray, TraceApi::stream, TraceApi::packet8,
-                                           TraceApi::packet16};
-
 // Args: query form (0 per_ray, 1 stream, 2 packet8, 3 packet16), threads (0 = every core).
 void BM_TraceFrame(benchmark::State& state) {
   const bench::BenchFixture& f = bench::bench_fixture();
-  const TraceApi api = kApis[static_cast<std::size_t>(state.range(0))];
+  const TraceApi api = kTraceApis[static_cast<std::size_t>(state.range(0))];
   const int threads =
       state.range(1) > 0 ? static_cast<int>(state.range(1)) : tbb::info::default_concurrency();
   const FrameTracer tracer(f.embree_scene, api);

@@ -28,9 +28,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-constexpr std::array<TraceApi, 4> kTraceApis = {TraceApi::per_ray, TraceApi::stream,
-                                                TraceApi::packet8, TraceApi::packet16};
-
 template <typename Work>
 double seconds_of(Work&& work) {
   const auto start = Clock::now();

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "detection/median.hpp"
 #include "geometry/error.hpp"
 
 namespace owsim {
@@ -63,13 +64,6 @@ bool may_hold_a_wire(const PlanExtent& extent) {
   constexpr double kCompactM = 15.0;
   return extent.length_m >= kCompactM ||
          (extent.length_m >= 4.0 && extent.length_m > 3.0 * extent.width_m);
-}
-
-double median_of(std::vector<double> values) {
-  if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
-  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
 }
 
 struct Box {
@@ -211,7 +205,7 @@ void ObstacleDetector::classify(const Eigen::Vector3d& aircraft) {
     }
     shape.isolated_share =
         static_cast<double>(isolated) / static_cast<double>(wire.points.size());
-    shape.clearance_m = median_of(std::move(clearances));
+    shape.clearance_m = median_of(clearances);
     accepted[w] = wire_rule(shape, params_) ? 1 : 0;
     any_rejected = any_rejected || !accepted[w];
   }

@@ -5,12 +5,14 @@
 #include <cmath>
 #include <numbers>
 
+#include "detection/median.hpp"
+
 namespace owsim {
 namespace {
 
 constexpr int kDirections = 180;  // 1° apart over a half turn
 constexpr double kOffsetBinM = 1.0;
-constexpr double kCellM = 1.0;
+constexpr double kVoteCellM = 1.0;
 constexpr std::size_t kMaxPeaks = 96;
 
 struct Direction {
@@ -31,8 +33,8 @@ const std::array<Direction, kDirections>& directions() {
 
 // A plan cell's key: 32 bits of each index (offset so that they sort as signed numbers).
 std::uint64_t cell_key(double e, double n) {
-  const auto i = static_cast<std::int64_t>(std::floor(e / kCellM)) + (std::int64_t{1} << 31);
-  const auto j = static_cast<std::int64_t>(std::floor(n / kCellM)) + (std::int64_t{1} << 31);
+  const auto i = static_cast<std::int64_t>(std::floor(e / kVoteCellM)) + (std::int64_t{1} << 31);
+  const auto j = static_cast<std::int64_t>(std::floor(n / kVoteCellM)) + (std::int64_t{1} << 31);
   return (static_cast<std::uint64_t>(i) << 32) | static_cast<std::uint32_t>(j);
 }
 
@@ -100,12 +102,6 @@ bool piece_of_line(double length_m, double width_m) {
   return length_m > 2.0 && length_m > 3.0 * width_m;
 }
 
-double median_of(std::vector<double>& values) {
-  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
-}
-
 }  // namespace
 
 void find_wire_candidates(std::span<const ObstaclePoint> points,
@@ -132,10 +128,10 @@ void find_wire_candidates(std::span<const ObstaclePoint> points,
   scratch.cells.erase(std::unique(scratch.cells.begin(), scratch.cells.end()), scratch.cells.end());
   for (const std::uint64_t key : scratch.cells) {
     const double x = (static_cast<double>(static_cast<std::int64_t>(key >> 32) -
-                                          (std::int64_t{1} << 31)) + 0.5) * kCellM -
+                                          (std::int64_t{1} << 31)) + 0.5) * kVoteCellM -
                      aircraft_en.x();
     const double y = (static_cast<double>(static_cast<std::int64_t>(key & 0xFFFFFFFFu) -
-                                          (std::int64_t{1} << 31)) + 0.5) * kCellM -
+                                          (std::int64_t{1} << 31)) + 0.5) * kVoteCellM -
                      aircraft_en.y();
     for (int k = 0; k < kDirections; ++k) {
       const Direction& d = table[static_cast<std::size_t>(k)];

@@ -8,6 +8,7 @@
 // pinned occlusion) however Embree orders its visits; a ray that misses the wires' bounds up to
 // its solid hit is not handed to the wire pass at all. Every pulse's result depends only on its own
 // ray, so the output is bit-identical whatever the thread count or the API.
+#include <array>
 #include <cstdint>
 #include <span>
 #include <string_view>
@@ -23,6 +24,9 @@ enum class TraceApi {
   packet8,   // rtcIntersect8 over groups of 8 rays
   packet16,  // rtcIntersect16 over groups of 16 rays
 };
+// Every way of tracing, in the order above (the bench's and the tests' sweeps over them).
+inline constexpr std::array<TraceApi, 4> kTraceApis = {TraceApi::per_ray, TraceApi::stream,
+                                                       TraceApi::packet8, TraceApi::packet16};
 
 [[nodiscard]] std::string_view to_string(TraceApi api);
 

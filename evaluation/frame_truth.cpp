@@ -13,7 +13,7 @@
 namespace owsim {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
 constexpr double kVelocityStepS = 0.005;  // the central difference of the sensor's velocity
 
 // Nearest point overall and nearest point in the field, over an object's segments given as
@@ -56,7 +56,7 @@ class NearestPoints {
   // True when the nearest point overall lies in the field: then it is the nearest inside too, and
   // no segment needs clipping (most objects in view: the field spans 42° by 36°).
   bool overall_inside(const FieldOfView& field) {
-    if (!(overall2 < kInf) || !field.contains(overall_src)) return false;
+    if (!(overall2 < kInfinity) || !field.contains(overall_src)) return false;
     inside2 = overall2;
     inside_src = overall_src;
     return true;
@@ -71,9 +71,9 @@ class NearestPoints {
     }
   }
 
-  double overall2 = kInf;
+  double overall2 = kInfinity;
   Eigen::Vector3d overall_src = Eigen::Vector3d::Zero();
-  double inside2 = kInf;
+  double inside2 = kInfinity;
   Eigen::Vector3d inside_src = Eigen::Vector3d::Zero();
 
  private:
@@ -127,8 +127,8 @@ ObjectGrid::Sphere FrameTruthModel::sphere_of(std::uint32_t object) const {
 
 ScanField frame_field(const ScanParams& scan, const FrameSweep& sweep) {
   ScanField field;
-  field.alpha_min_deg = kInf;
-  field.alpha_max_deg = -kInf;
+  field.alpha_min_deg = kInfinity;
+  field.alpha_max_deg = -kInfinity;
   for (int fiber = 1; fiber < scan.fibers_per_line; ++fiber) {
     const double alpha = fiber_alpha_deg(scan, fiber);
     field.alpha_min_deg = std::min(field.alpha_min_deg, alpha);
@@ -216,7 +216,7 @@ FrameTruthModel::ObjectView FrameTruthModel::view_of(std::uint32_t object,
     };
     // The nearest point overall in offsets from the sensor (distances do not need the turn to
     // sensor axes): only the nearest one is turned.
-    double overall2 = kInf;
+    double overall2 = kInfinity;
     Eigen::Vector3d overall = Eigen::Vector3d::Zero();
     for (const auto& [gap, c] : order) {
       if (gap * gap >= overall2) break;
@@ -296,7 +296,7 @@ FrameTruthModel::ObjectView FrameTruthModel::view_of(std::uint32_t object,
     nearest.clip(field);
   }
   ObjectView view;
-  view.in_view = nearest.inside2 < kInf;
+  view.in_view = nearest.inside2 < kInfinity;
   view.point_src = view.in_view ? nearest.inside_src : nearest.overall_src;
   view.range_m = view.point_src.norm();
   view.angles = field_angles(view.point_src);

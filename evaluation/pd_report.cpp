@@ -18,7 +18,6 @@ namespace {
 constexpr std::string_view kPdCsvHeader =
     "target,range_lo_m,range_hi_m,windows,windows_detected,pd_window,pd_window_lo,pd_window_hi,"
     "trials,trials_detected,pd_cumulative,pd_cumulative_lo,pd_cumulative_hi";
-constexpr int kProportionDecimals = 12;
 
 void append_proportion(std::string& out, std::uint64_t hits, std::uint64_t count,
                        const ProportionInterval& interval) {

@@ -9,6 +9,9 @@
 
 namespace owsim {
 
+// Digits after the point of every proportion (a Pd and its interval's ends) in pd.csv and roc.csv.
+inline constexpr int kProportionDecimals = 12;
+
 struct ReportFile {
   std::string name;  // in the report's folder: "pd.csv"
   std::string text;  // the whole file, rendered before anything is written

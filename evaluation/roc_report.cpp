@@ -23,7 +23,6 @@ namespace {
 constexpr std::string_view kRocCsvHeader =
     "value,members,windows,windows_detected,pd_window,pd_window_lo,pd_window_hi,pulses,"
     "false_returns,false_returns_per_s";
-constexpr int kProportionDecimals = 12;  // as pd.csv
 constexpr int kRateDigits = 12;
 
 // The value as a finite number, when the whole text is one.

@@ -21,9 +21,6 @@
 namespace owsim {
 namespace {
 
-constexpr TraceApi kApis[4] = {TraceApi::per_ray, TraceApi::stream, TraceApi::packet8,
-                               TraceApi::packet16};
-
 const Eigen::AlignedBox2d kRegion(Eigen::Vector2d(-2000.0, -2000.0),
                                   Eigen::Vector2d(2000.0, 2000.0));
 
@@ -36,7 +33,7 @@ std::vector<PulseCandidates> trace_all(const EmbreeScene& scene, const Scene& ob
   const std::vector<std::uint8_t> active(rays.size(), 1);
   std::vector<PulseCandidates> reference(rays.size());
   BruteForceTracer(objects, scene.terrain_mesh(), scene.receiver()).trace(rays, active, reference);
-  for (TraceApi api : kApis) {
+  for (TraceApi api : kTraceApis) {
     std::vector<PulseCandidates> traced(rays.size());
     FrameTracer(scene, api).trace(rays, active, traced);
     for (std::size_t i = 0; i < rays.size(); ++i) {

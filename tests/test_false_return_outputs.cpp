@@ -79,7 +79,7 @@ test::SyntheticFrame frame_with_false_returns(const ScanParams& scan, std::int64
   return frame;
 }
 
-std::vector<std::string> lines_of(const std::string& text) {
+std::vector<std::string> text_lines(const std::string& text) {
   std::vector<std::string> lines;
   std::istringstream in(text);
   for (std::string line; std::getline(in, line);) lines.push_back(line);
@@ -95,7 +95,7 @@ std::vector<std::string> cells_of(const std::string& line) {
   return cells;
 }
 
-std::string fixed(double value, int decimals) {
+std::string fixed_text(double value, int decimals) {
   char text[64];
   std::snprintf(text, sizeof text, "%.*f", decimals, value);
   return text;
@@ -135,7 +135,7 @@ class FalseReturnOutputs : public ::testing::Test {
 };
 
 TEST_F(FalseReturnOutputs, PointsCsvRowsSayNoiseWithNoObjectAndNoIncidence) {
-  const std::vector<std::string> lines = lines_of(files_.at("points.csv"));
+  const std::vector<std::string> lines = text_lines(files_.at("points.csv"));
   ASSERT_EQ(lines.size(), 1 + 3 * kFrames);
   const KnownReturns at;
   const test::SyntheticFrame& frame = frames_[1];
@@ -155,9 +155,10 @@ TEST_F(FalseReturnOutputs, PointsCsvRowsSayNoiseWithNoObjectAndNoIncidence) {
     const Eigen::Vector3d enu = ray.origin_enu_m + ret.range_m * ray.dir_enu;
     const std::string head = "1," + std::to_string(pulse.index) + "," + std::to_string(pulse.line) +
                              "," + std::to_string(pulse.fiber) + "," +
-                             std::to_string(expected[i].r + 1) + "," + fixed(pulse.time_s, 9) +
-                             "," + fixed(ret.range_m, 4) + "," + std::to_string(ret.counter) + "," +
-                             fixed(enu.x(), 4) + "," + fixed(enu.y(), 4) + "," + fixed(enu.z(), 4);
+                             std::to_string(expected[i].r + 1) + "," + fixed_text(pulse.time_s, 9) +
+                             "," + fixed_text(ret.range_m, 4) + "," + std::to_string(ret.counter) +
+                             "," + fixed_text(enu.x(), 4) + "," + fixed_text(enu.y(), 4) + "," +
+                             fixed_text(enu.z(), 4);
     const std::string& row = lines[4 + i];
     ASSERT_TRUE(row.starts_with(head + ",")) << row << "\n" << head;
     EXPECT_TRUE(row.ends_with("," + expected[i].tail)) << row;

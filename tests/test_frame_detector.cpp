@@ -17,7 +17,7 @@ using test::read_whole_file;
 using test::run_cli;
 using test::TempDir;
 
-const std::string kApproach = OWSIM_SOURCE_DIR "/tests/data/detector/approach.yaml";
+const std::string kDetectorApproach = OWSIM_SOURCE_DIR "/tests/data/detector/approach.yaml";
 
 std::string detections_of(const Simulation& simulation) {
   FrameDetector detector(simulation);
@@ -38,7 +38,7 @@ TEST(FrameDetector, WarnsAsTheRunsDetectionsCsvForMilowsAndHellas) {
   const TempDir dir;
   std::filesystem::copy_file(OWSIM_SOURCE_DIR "/tests/data/detector/building.obj",
                              dir / "building.obj");
-  std::ifstream in(kApproach);
+  std::ifstream in(kDetectorApproach);
   std::ofstream hellas(dir / "hellas.yaml");
   std::string line;
   while (std::getline(in, line)) {
@@ -46,7 +46,7 @@ TEST(FrameDetector, WarnsAsTheRunsDetectionsCsvForMilowsAndHellas) {
   }
   hellas.close();
   for (const std::filesystem::path scenario :
-       {std::filesystem::path(kApproach), dir / "hellas.yaml"}) {
+       {std::filesystem::path(kDetectorApproach), dir / "hellas.yaml"}) {
     SCOPED_TRACE(scenario.string());
     const test::CliResult run =
         run_cli({"run", scenario.string(), "--frames", "45", "--out",
@@ -65,7 +65,7 @@ TEST(FrameDetector, WarnsAsTheRunsDetectionsCsvForMilowsAndHellas) {
 TEST(FrameDetector, RefusesFramesOutOfOrder) {
   SimulationOptions options;
   options.frames = 3;
-  const Simulation simulation = Simulation::open(kApproach, options);
+  const Simulation simulation = Simulation::open(kDetectorApproach, options);
   FrameDetector detector(simulation);
   Frame frame;
   simulation.simulate_frame(1, frame);

@@ -47,7 +47,7 @@ using test::synthetic_frame;
 using test::SyntheticFrame;
 
 const Geodetic kOrigin{48.6881, 10.8447, 450.0};
-constexpr std::int64_t kFrames = 9;
+constexpr std::int64_t kEncodedFrames = 9;
 constexpr std::size_t kPool = 3;  // encodings in flight
 
 class FrameEncodingTest : public ::testing::Test {
@@ -57,7 +57,7 @@ class FrameEncodingTest : public ::testing::Test {
            ("owsim_frame_encoding_" + std::to_string(::getpid()) + "_" +
             ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(dir_);
-    for (std::int64_t f = 0; f < kFrames; ++f) frames_.push_back(synthetic_frame(scan_, f));
+    for (std::int64_t f = 0; f < kEncodedFrames; ++f) frames_.push_back(synthetic_frame(scan_, f));
   }
   void TearDown() override { fs::remove_all(dir_); }
 
@@ -194,7 +194,7 @@ class FrameEncodingTest : public ::testing::Test {
     // Enough points that the comparison means something: about 0.45 returns a pulse.
     const auto rows =
         std::count(one_by_one.at("points.csv").begin(), one_by_one.at("points.csv").end(), '\n');
-    EXPECT_GT(rows, static_cast<long>(kFrames) * scan_.pulses_per_frame() / 3);
+    EXPECT_GT(rows, static_cast<long>(kEncodedFrames) * scan_.pulses_per_frame() / 3);
   }
 
   fs::path dir_;
@@ -211,7 +211,7 @@ TEST_F(FrameEncodingTest, MilowsFramesEncodedInParallelGiveTheSameBytes) {
 TEST_F(FrameEncodingTest, HellasFramesEncodedInParallelGiveTheSameBytes) {
   scan_.model = SensorModel::hellas;
   frames_.clear();
-  for (std::int64_t f = 0; f < kFrames; ++f) frames_.push_back(synthetic_frame(scan_, f));
+  for (std::int64_t f = 0; f < kEncodedFrames; ++f) frames_.push_back(synthetic_frame(scan_, f));
   expect_same_bytes_every_way();
 }
 
@@ -228,7 +228,7 @@ TEST_F(FrameEncodingTest, WithoutTheSummaryTheWordsAreTheSameAndNothingIsTallied
     outputs.add_frame(frame.view(), encoding);
   }
   // The tally feeds summary.json alone, so a run without it skips it.
-  EXPECT_EQ(outputs.summary().frames(), static_cast<std::uint64_t>(kFrames));
+  EXPECT_EQ(outputs.summary().frames(), static_cast<std::uint64_t>(kEncodedFrames));
   EXPECT_EQ(outputs.summary().pulses(), 0u);
   EXPECT_EQ(outputs.summary().returns_of(SurfaceClass::ground), 0u);
   outputs.finish({});

@@ -23,17 +23,17 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-struct Frame {
+struct BuiltFrame {
   std::vector<Pulse> pulses;
   std::vector<PulseRay> rays;
   std::vector<std::uint8_t> active;
 };
 
-Frame build_frame(const FrameRayBuilder& builder, const ScanParams& scan, const FrameSweep& sweep,
-                  const PoseSource& poses) {
+BuiltFrame build_frame(const FrameRayBuilder& builder, const ScanParams& scan,
+                       const FrameSweep& sweep, const PoseSource& poses) {
   const auto count = static_cast<std::size_t>(scan.pulses_per_frame());
-  Frame frame{std::vector<Pulse>(count), std::vector<PulseRay>(count),
-              std::vector<std::uint8_t>(count, 7)};
+  BuiltFrame frame{std::vector<Pulse>(count), std::vector<PulseRay>(count),
+                   std::vector<std::uint8_t>(count, 7)};
   // In two uneven blocks, as the simulator's parallel_for may split the lines.
   const auto split = static_cast<std::size_t>(5 * scan.fibers_per_line);
   builder.build_lines(sweep, poses, 0, 5, std::span(frame.pulses).first(split),
@@ -75,7 +75,7 @@ TEST(FrameRays, PulsesEqualPulseOfFrameForBothModelsOrdersAndDirections) {
            {std::int64_t{0}, std::int64_t{1}, std::int64_t{7}, std::int64_t{40},
             std::int64_t{442'570'718'098}, std::int64_t{100'000'000'000'000}}) {
         const FrameSweep sweep = frame_sweep(scan, 99, frame_index, frame_index == 7 ? 3.5 : 0.0);
-        const Frame frame = build_frame(builder, scan, sweep, hover);
+        const BuiltFrame frame = build_frame(builder, scan, sweep, hover);
         int inactive = 0;
         for (int k = 0; k < scan.pulses_per_frame(); ++k) {
           const auto at = static_cast<std::size_t>(k);
@@ -101,7 +101,7 @@ RayError ray_error(const ScanParams& scan, const Mount& mount, const PoseSource&
   RayError worst;
   for (const std::int64_t frame_index : frames) {
     const FrameSweep sweep = frame_sweep(scan, 5, frame_index, 0.0);
-    const Frame frame = build_frame(builder, scan, sweep, poses);
+    const BuiltFrame frame = build_frame(builder, scan, sweep, poses);
     for (std::size_t k = 0; k < frame.pulses.size(); ++k) {
       const Pulse& pulse = frame.pulses[k];
       if (pulse.reference) continue;

@@ -25,11 +25,8 @@
 namespace owsim {
 namespace {
 
-constexpr TraceApi kApis[4] = {TraceApi::per_ray, TraceApi::stream, TraceApi::packet8,
-                               TraceApi::packet16};
-
-const Eigen::AlignedBox2d kRegion(Eigen::Vector2d(-2000.0, -2000.0),
-                                  Eigen::Vector2d(2000.0, 2000.0));
+const Eigen::AlignedBox2d kMeshRegion(Eigen::Vector2d(-2000.0, -2000.0),
+                                      Eigen::Vector2d(2000.0, 2000.0));
 
 Scene flat_ground(double height_m) {
   Scene scene;
@@ -53,7 +50,7 @@ TEST(FrameSimulator, ReferenceFiberCarriesTheReferenceCounterAndNoRay) {
   FrameSimulatorParams params;
   params.receiver.range_noise_sigma_m = 0.0;
   const EmbreeDevice device;
-  const EmbreeScene embree(device, scene, params.receiver, kRegion,
+  const EmbreeScene embree(device, scene, params.receiver, kMeshRegion,
                            timeout_range_m(params.receiver.counter));
   const FrameSimulator simulator(params, embree, TraceApi::stream);
   FrameResult out;
@@ -85,7 +82,7 @@ TEST(FrameSimulator, RaysAreUnitVectorsFromTheSensor) {
   FrameSimulatorParams params;
   params.mount.lever_arm_m = Eigen::Vector3d(2.0, 0.5, 1.0);
   const EmbreeDevice device;
-  const EmbreeScene embree(device, scene, params.receiver, kRegion,
+  const EmbreeScene embree(device, scene, params.receiver, kMeshRegion,
                            timeout_range_m(params.receiver.counter));
   const FrameSimulator simulator(params, embree, TraceApi::per_ray);
   FrameResult out;
@@ -113,7 +110,7 @@ TEST(FrameSimulator, GroundReturnsLieOnTheGround) {
   params.receiver.range_noise_sigma_m = 0.0;
   params.receiver.noise.on = false;  // the ground's geometry alone: no false return behind it
   const EmbreeDevice device;
-  const EmbreeScene embree(device, scene, params.receiver, kRegion,
+  const EmbreeScene embree(device, scene, params.receiver, kMeshRegion,
                            timeout_range_m(params.receiver.counter));
   const FrameSimulator simulator(params, embree, TraceApi::packet8);
   FrameResult out;
@@ -180,7 +177,7 @@ TEST(FrameSimulator, FramesAreBitIdenticalAcrossThreadsApisAndOrder) {
 
   std::vector<std::uint64_t> expected;
   int wire_returns = 0;
-  for (TraceApi api : kApis) {
+  for (TraceApi api : kTraceApis) {
     const FrameSimulator simulator(params, embree, api);
     for (int threads : {1, 2}) {
       tbb::task_arena arena(threads);

@@ -31,8 +31,6 @@
 namespace owsim {
 namespace {
 
-constexpr TraceApi kApis[4] = {TraceApi::per_ray, TraceApi::stream, TraceApi::packet8,
-                               TraceApi::packet16};
 constexpr double kRangeTolerance_m = 1e-3;
 constexpr double kEnergyTolerance = 1e-9;
 // Under AddressSanitizer (scripts/sanitize.sh) the brute force runs 10–20× slower than in
@@ -186,7 +184,7 @@ void trace_random_rays(std::uint64_t seed, bool sloped_grid, int ray_count, Cove
     if (a.kind == test::AimKind::end_cap && captured) ++coverage.end_caps;
   }
 
-  for (TraceApi api : kApis) {
+  for (TraceApi api : kTraceApis) {
     const FrameTracer tracer(scene, api);
     std::vector<PulseCandidates> traced(rays.size());
     tracer.trace(rays, active, traced);
@@ -295,7 +293,7 @@ TEST(FrameTracerAgreement, WholeFramesMatchBruteForceThroughTheReceiver) {
     std::vector<PulseCandidates> reference_candidates(reference.rays.size());
     brute.trace(reference.rays, reference.active, reference_candidates);
     reference_simulator.receive(reference, reference_candidates);
-    for (TraceApi api : kApis) {
+    for (TraceApi api : kTraceApis) {
       const FrameSimulator simulator(params, scene, api);
       FrameResult embree;
       simulator.simulate(frame, poses, embree);
@@ -360,7 +358,7 @@ TEST(FrameTracerAgreement, DarkPoleOccludesTheWireBehindIt) {
   const BruteForceTracer brute(objects, scene.terrain_mesh(), receiver);
   const std::vector<PulseRay> rays = {{{0.0, 0.0, 10.0}, Eigen::Vector3d::UnitY()}};
   const std::vector<std::uint8_t> active = {1};
-  for (TraceApi api : kApis) {
+  for (TraceApi api : kTraceApis) {
     std::vector<PulseCandidates> traced(1);
     FrameTracer(scene, api).trace(rays, active, traced);
     std::vector<PulseCandidates> reference(1);
@@ -446,7 +444,7 @@ TEST(FrameTracerAgreement, WhatStandsOnTheLevelGroundStopsTheRayToItsFoot) {
   const std::uint32_t shed_object = mesh_object_index(objects, 0);
   const std::vector<std::uint32_t> expected = {pole_object, shed_object, ground,
                                                ground,      ground,      ground};
-  for (TraceApi api : kApis) {
+  for (TraceApi api : kTraceApis) {
     std::vector<PulseCandidates> traced(rays.size());
     FrameTracer(scene, api).trace(rays, active, traced);
     for (std::size_t i = 0; i < rays.size(); ++i) {
@@ -511,7 +509,7 @@ TEST(FrameTracerAgreement, MeshesStopTheRayLikeTheBruteForce) {
       }
       ++mesh_hits;
     }
-    for (TraceApi api : kApis) {
+    for (TraceApi api : kTraceApis) {
       std::vector<PulseCandidates> traced(rays.size());
       FrameTracer(scene, api).trace(rays, active, traced);
       for (std::size_t i = 0; i < rays.size(); ++i) {
@@ -662,7 +660,7 @@ TEST(FrameTracerAgreement, DemGridsStopTheRayLikeTheBruteForceOverItsTriangles) 
   const auto skimming = std::count(skims.begin(), skims.end(), 1);
   EXPECT_LT(skimming, 250);  // 134 of the 3,500 here, most of them aimed beside an edge
   int ground = 0, open_sky = 0;
-  for (TraceApi api : kApis) {
+  for (TraceApi api : kTraceApis) {
     std::vector<PulseCandidates> traced(rays.size());
     FrameTracer(scene, api).trace(rays, active, traced);
     for (std::size_t i = 0; i < rays.size(); ++i) {

@@ -103,7 +103,7 @@ LasWriterOptions options_at(const Geodetic& origin) {
   return options;
 }
 
-constexpr Geodetic kOrigin{48.6881, 10.8447, 450.0};
+constexpr Geodetic kLasOrigin{48.6881, 10.8447, 450.0};
 
 TEST(LasFieldMappings, Intensity) {
   EXPECT_EQ(las_intensity(0.0, 1.0), 0);
@@ -141,8 +141,8 @@ TEST(LasFieldMappings, ClassificationScanAngleAndDate) {
 }
 
 TEST_F(LasWriterTest, HeaderBytesAtTheSpecOffsets) {
-  const auto points = scattered_points(kOrigin, 250, 1500.0, 7);
-  LasWriter writer(path(), options_at(kOrigin));
+  const auto points = scattered_points(kLasOrigin, 250, 1500.0, 7);
+  LasWriter writer(path(), options_at(kLasOrigin));
   writer.write(std::span(points).first(100));
   writer.write(std::span(points).subspan(100));
   writer.finish();
@@ -169,7 +169,7 @@ TEST_F(LasWriterTest, HeaderBytesAtTheSpecOffsets) {
   for (std::size_t offset = 107; offset < 131; offset += 4) {
     EXPECT_EQ(field<std::uint32_t>(bytes, offset), 0u) << "legacy count at " << offset;
   }
-  const UtmPoint origin = utm_from_geodetic(kOrigin.lat_deg, kOrigin.lon_deg);
+  const UtmPoint origin = utm_from_geodetic(kLasOrigin.lat_deg, kLasOrigin.lon_deg);
   EXPECT_EQ(writer.grid().zone, 32);
   EXPECT_TRUE(writer.grid().northp);
   for (std::size_t axis = 0; axis < 3; ++axis) EXPECT_EQ(field_double(bytes, 131 + 8 * axis), 1e-4);
@@ -318,8 +318,8 @@ std::string python_reader_verdict(const std::filesystem::path& las,
 }
 
 TEST_F(LasWriterTest, AnIndependentPythonReaderDecodesEveryPoint) {
-  const auto points = scattered_points(kOrigin, 400, 2000.0, 11);
-  LasWriter writer(path(), options_at(kOrigin));
+  const auto points = scattered_points(kLasOrigin, 400, 2000.0, 11);
+  LasWriter writer(path(), options_at(kLasOrigin));
   writer.write(points);
   writer.finish();
   EXPECT_EQ(python_reader_verdict(path(), points, 32632), "OK 400\n");
@@ -359,7 +359,7 @@ TEST_F(LasWriterTest, NearThePoleTheGridIsUps) {
 
 TEST_F(LasWriterTest, CreationDateDefaultsToTodayUtc) {
   LasWriterOptions options;
-  options.origin = kOrigin;
+  options.origin = kLasOrigin;
   const LasDate before = las_date_utc(std::time(nullptr));
   {
     LasWriter writer(path(), options);
@@ -375,7 +375,7 @@ TEST_F(LasWriterTest, CreationDateDefaultsToTodayUtc) {
 }
 
 TEST_F(LasWriterTest, AnEmptyFileHasZeroCountsAndBounds) {
-  LasWriter writer(path(), options_at(kOrigin));
+  LasWriter writer(path(), options_at(kLasOrigin));
   writer.finish();
   const auto bytes = read_bytes(path());
   ASSERT_EQ(bytes.size(), field<std::uint32_t>(bytes, 96));
@@ -386,15 +386,15 @@ TEST_F(LasWriterTest, AnEmptyFileHasZeroCountsAndBounds) {
 }
 
 TEST_F(LasWriterTest, PointsBeyondTheInt32RangeOrWithBadReturnNumbersThrow) {
-  LasWriter writer(path(), options_at(kOrigin));
+  LasWriter writer(path(), options_at(kLasOrigin));
   PointRecord far;
-  far.geodetic = {kOrigin.lat_deg, kOrigin.lon_deg + 3.5, 450.0};  // ≈ 257 km east
+  far.geodetic = {kLasOrigin.lat_deg, kLasOrigin.lon_deg + 3.5, 450.0};  // ≈ 257 km east
   EXPECT_THROW(writer.write(std::span(&far, 1)), Error);
   PointRecord high;
-  high.geodetic = {kOrigin.lat_deg, kOrigin.lon_deg, 450.0 + 215000.0};
+  high.geodetic = {kLasOrigin.lat_deg, kLasOrigin.lon_deg, 450.0 + 215000.0};
   EXPECT_THROW(writer.write(std::span(&high, 1)), Error);
   PointRecord bad_return;
-  bad_return.geodetic = kOrigin;
+  bad_return.geodetic = kLasOrigin;
   bad_return.return_number = 2;
   bad_return.number_of_returns = 1;
   EXPECT_THROW(writer.write(std::span(&bad_return, 1)), Error);
@@ -404,10 +404,10 @@ TEST_F(LasWriterTest, PointsBeyondTheInt32RangeOrWithBadReturnNumbersThrow) {
 }
 
 TEST_F(LasWriterTest, BadOptionsThrow) {
-  LasWriterOptions options = options_at(kOrigin);
+  LasWriterOptions options = options_at(kLasOrigin);
   options.scale_m = 0;
   EXPECT_THROW({ LasWriter writer(path(), options); }, Error);
-  options = options_at(kOrigin);
+  options = options_at(kLasOrigin);
   options.intensity_full_scale = -1;
   EXPECT_THROW({ LasWriter writer(path(), options); }, Error);
   options = options_at({91.0, 0.0, 0.0});
@@ -416,9 +416,9 @@ TEST_F(LasWriterTest, BadOptionsThrow) {
 }
 
 TEST_F(LasWriterTest, NothingUnderTheFinalNameBeforeFinishOrAfterAFailure) {
-  const auto points = scattered_points(kOrigin, 10, 100.0, 3);
+  const auto points = scattered_points(kLasOrigin, 10, 100.0, 3);
   {
-    LasWriter writer(path(), options_at(kOrigin));
+    LasWriter writer(path(), options_at(kLasOrigin));
     writer.write(points);
     EXPECT_FALSE(std::filesystem::exists(path()));
     writer.finish();
@@ -426,7 +426,7 @@ TEST_F(LasWriterTest, NothingUnderTheFinalNameBeforeFinishOrAfterAFailure) {
   }
   const auto other = directory_ / "other.las";
   try {
-    LasWriter writer(other, options_at(kOrigin));
+    LasWriter writer(other, options_at(kLasOrigin));
     writer.write(points);
     throw std::runtime_error("simulation failed");
   } catch (const std::runtime_error&) {

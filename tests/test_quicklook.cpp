@@ -86,13 +86,13 @@ DecodedImage read_png(const std::filesystem::path& path) {
 }
 
 // A frame whose pulses come from the scan pattern and whose returns the test sets by hand.
-struct SyntheticFrame {
+struct QuicklookFrame {
   FrameSweep sweep;
   std::vector<Pulse> pulses;
   std::vector<PulseRay> rays;
   std::vector<PulseReturns> returns;
 
-  SyntheticFrame(const ScanParams& scan, std::int64_t frame) : sweep(frame_sweep(scan, 7, frame)) {
+  QuicklookFrame(const ScanParams& scan, std::int64_t frame) : sweep(frame_sweep(scan, 7, frame)) {
     for (int k = 0; k < scan.pulses_per_frame(); ++k) {
       pulses.push_back(pulse_of_frame(scan, sweep, k));
     }
@@ -240,7 +240,7 @@ TEST_F(QuicklookTest, RangeImageCellsOnAnUpwardSweep) {
   const ScanParams scan;
   Quicklook quicklook(quicklook_dir(), Scene{}, scan,
                       {Eigen::Vector2d(-10, -10), Eigen::Vector2d(10, 10)}, fast_options());
-  SyntheticFrame frame(scan, 0);
+  QuicklookFrame frame(scan, 0);
   ASSERT_EQ(frame.sweep.direction, 1);
   for (int line = 50; line <= 60; ++line) frame.add_return(line, 30, 200.0, SurfaceClass::wire);
   frame.add_return(10, 40, 150.0, SurfaceClass::ground);  // ground first, a tree behind it
@@ -294,7 +294,7 @@ TEST_F(QuicklookTest, DownwardSweepIsFlippedSoBetaRisesToTheRight) {
   options.range_full_scale_m = 400.0;
   Quicklook quicklook(quicklook_dir(), Scene{}, scan,
                       {Eigen::Vector2d(-10, -10), Eigen::Vector2d(10, 10)}, options);
-  SyntheticFrame frame(scan, 1);
+  QuicklookFrame frame(scan, 1);
   ASSERT_EQ(frame.sweep.direction, -1);
   // β falls with the line on this frame: line 0 has the highest β, so it is the last column.
   ASSERT_GT(frame.pulses[frame.index_of(0, 30)].beta_deg,
@@ -319,7 +319,7 @@ TEST_F(QuicklookTest, EveryNthFrameAndNothingPartial) {
                       {Eigen::Vector2d(-10, -10), Eigen::Vector2d(10, 10)}, fast_options());
   EXPECT_TRUE(std::filesystem::is_directory(quicklook_dir()));
   for (const std::int64_t f : {0, 5, 10, 13}) {
-    const SyntheticFrame frame(scan, f);
+    const QuicklookFrame frame(scan, f);
     quicklook.add_frame(frame.view());
   }
   EXPECT_EQ(files(), (std::set<std::string>{"frame_000000.png", "frame_000010.png"}));
@@ -327,7 +327,7 @@ TEST_F(QuicklookTest, EveryNthFrameAndNothingPartial) {
   EXPECT_EQ(files(), (std::set<std::string>{"frame_000000.png", "frame_000010.png", "map.png"}));
   EXPECT_THROW(quicklook.finish(), Error);
   EXPECT_THROW(quicklook.add_trajectory_point(Eigen::Vector3d::Zero()), Error);
-  EXPECT_THROW(quicklook.add_frame(SyntheticFrame(scan, 20).view()), Error);
+  EXPECT_THROW(quicklook.add_frame(QuicklookFrame(scan, 20).view()), Error);
   EXPECT_FALSE(std::filesystem::exists(quicklook_dir() / "frame_000020.png"));
 }
 
@@ -337,7 +337,7 @@ TEST_F(QuicklookTest, NoRangeImagesWhenNIsZero) {
   options.every_nth_frame = 0;
   Quicklook quicklook(quicklook_dir(), Scene{}, scan,
                       {Eigen::Vector2d(-10, -10), Eigen::Vector2d(10, 10)}, options);
-  quicklook.add_frame(SyntheticFrame(scan, 0).view());
+  quicklook.add_frame(QuicklookFrame(scan, 0).view());
   quicklook.finish();
   EXPECT_EQ(files(), (std::set<std::string>{"map.png"}));
 }
@@ -360,7 +360,7 @@ TEST_F(QuicklookTest, MapDrawsObjectsTrajectoryAndHits) {
   quicklook.add_trajectory_point({-250.5, -200.5, 100.0});
   quicklook.add_trajectory_point({249.5, -200.5, 100.0});
 
-  SyntheticFrame frame(scan, 3);  // not an Nth frame: hits only
+  QuicklookFrame frame(scan, 3);  // not an Nth frame: hits only
   for (PulseRay& ray : frame.rays) {
     ray.origin_enu_m = {120.5, -200.5, 100.0};
     ray.dir_enu = {0.0, 1.0, 0.0};
@@ -477,10 +477,10 @@ TEST_F(QuicklookTest, RejectsBadSetUpAndMismatchedFrames) {
                Error);
 
   Quicklook quicklook(quicklook_dir(), Scene{}, scan, region, fast_options());
-  SyntheticFrame frame(scan, 0);
+  QuicklookFrame frame(scan, 0);
   frame.rays.pop_back();
   EXPECT_THROW(quicklook.add_frame(frame.view()), Error);
-  SyntheticFrame wrong(scan, 0);
+  QuicklookFrame wrong(scan, 0);
   wrong.pulses[5].line = 159;
   EXPECT_THROW(quicklook.add_frame(wrong.view()), Error);
   EXPECT_EQ(files(), (std::set<std::string>{}));

@@ -19,7 +19,6 @@ using fixture::kFibers;
 using fixture::kLines;
 using fixture::kNiPulse;
 using fixture::kPulsesPerFrame;
-using fixture::kTimeout;
 
 class RecordingCheck : public ::testing::Test {
  protected:
@@ -53,7 +52,7 @@ std::vector<std::uint64_t> expected_returns(int frames, bool second) {
   for (std::int64_t line = 0; line < std::int64_t{frames} * kLines; ++line) {
     for (int slot = 0; slot < kFibers; ++slot) {
       const auto counter = second ? fixture::counter2(line, slot) : fixture::counter1(line, slot);
-      if (counter < kTimeout) ++per_fiber[static_cast<std::size_t>(slot)];
+      if (counter < fixture::kTimeout) ++per_fiber[static_cast<std::size_t>(slot)];
     }
   }
   return per_fiber;
@@ -186,7 +185,8 @@ TEST_F(RecordingCheck, RecordingStartingMidLineAssignsFibersFromTheFirstLineGate
   for (std::size_t n = skipped; n < all.size(); ++n) {
     const std::int64_t line = static_cast<std::int64_t>(n) / kFibers;
     const int slot = static_cast<int>(n % kFibers);
-    if (fixture::counter1(line, slot) < kTimeout) ++expected[static_cast<std::size_t>(slot)];
+    if (fixture::counter1(line, slot) < fixture::kTimeout)
+      ++expected[static_cast<std::size_t>(slot)];
   }
   EXPECT_EQ(r.returns_per_fiber, expected);
   ASSERT_EQ(r.note_count, 1u);

@@ -24,7 +24,7 @@ using test::csv_rows;
 using test::run_cli;
 using test::TempDir;
 
-const fs::path kSource = OWSIM_SOURCE_DIR;
+const fs::path kRocSource = OWSIM_SOURCE_DIR;
 
 // One hand-made member: its values, flight length and false returns, and the wire's truth.
 struct Member {
@@ -108,7 +108,7 @@ std::vector<std::size_t> all_members() {
 
 std::string oracle(const fs::path& sweep, const fs::path& out, const std::string& arguments) {
   return test::run_python_file(
-      kSource / "tests/oracles/roc_oracle.py",
+      kRocSource / "tests/oracles/roc_oracle.py",
       {.arguments = sweep.string() + " " + out.string() + " " + arguments});
 }
 
@@ -219,7 +219,7 @@ TEST(RocCli, EachRowCountsTheWindowsOwsimPdCountsOverItsMembers) {
 
 TEST(RocCli, ARealSweepOverTwoThresholdsAgreesAndShowsInTheReportPage) {
   const TempDir work("owsim_roc_real");
-  fs::copy_file(kSource / "examples/campaigns/hellas_5mm_approach.yaml",
+  fs::copy_file(kRocSource / "examples/campaigns/hellas_5mm_approach.yaml",
                 work / "hellas_5mm_approach.yaml");
   std::ofstream(work / "sweep.yaml")
       << "base: hellas_5mm_approach.yaml\n"

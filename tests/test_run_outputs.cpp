@@ -389,7 +389,7 @@ TEST(RunOutputs, GeodeticColumnsAgreeWithPyproj) {
 
 // ---- determinism ----
 
-std::set<fs::path> files_under(const fs::path& root) {
+std::set<fs::path> files_below(const fs::path& root) {
   std::set<fs::path> files;
   for (const auto& entry : fs::recursive_directory_iterator(root)) {
     if (entry.is_regular_file()) files.insert(fs::relative(entry.path(), root));
@@ -402,8 +402,8 @@ TEST(RunOutputs, SameSeedGivesTheSameBytesWithOneAndTwoThreads) {
   const OwsimRun& two = corridor_threads(2);
   ASSERT_EQ(one.result().exit_status, 0) << one.result().err;
   ASSERT_EQ(two.result().exit_status, 0) << two.result().err;
-  const std::set<fs::path> files = files_under(one.out());
-  ASSERT_EQ(files, files_under(two.out()));
+  const std::set<fs::path> files = files_below(one.out());
+  ASSERT_EQ(files, files_below(two.out()));
   for (const char* name : {"flight.d64", "points.csv", "points.las", "points.ply", "trajectory.csv",
                            "summary.json", "quicklook/map.png", "quicklook/frame_000000.png"}) {
     EXPECT_TRUE(files.contains(name)) << name;
@@ -440,7 +440,7 @@ TEST(RunOutputs, EachPointFormatAloneIsTheFileOfPoints) {
     const OwsimRun alone(example("corridor"), {"--frames", std::to_string(kCorridorFrames),
                                                "--threads", "2", "--outputs", output});
     ASSERT_EQ(alone.result().exit_status, 0) << alone.result().err;
-    EXPECT_EQ(files_under(alone.out()), (std::set<fs::path>{file, "scenario.yaml"}));
+    EXPECT_EQ(files_below(alone.out()), (std::set<fs::path>{file, "scenario.yaml"}));
     EXPECT_TRUE(test::read_whole_file(alone.out() / file) ==
                 test::read_whole_file(all.out() / file));
   }

@@ -20,7 +20,7 @@ namespace owsim {
 namespace {
 
 constexpr std::uint64_t kSeed = 0x5EED;
-constexpr std::int64_t kFrame = 31;
+constexpr std::int64_t kBatchFrame = 31;
 
 std::uint64_t bits(double x) { return std::bit_cast<std::uint64_t>(x); }
 
@@ -72,7 +72,7 @@ void check(const ReceiverParams& p, int pulses, Tally& tally) {
   for (int run = 0; run < pulses; run += 256) {
     std::vector<PhiloxBlock> blocks(256);
     std::vector<double> normals(256);
-    random_blocks(kSeed, kFrame, run, RandomPurpose::range_noise_first, blocks);
+    random_blocks(kSeed, kBatchFrame, run, RandomPurpose::range_noise_first, blocks);
     first_block_normals(blocks, normals);
     std::vector<Candidate> candidates;
     std::vector<int> pulse_of;
@@ -80,7 +80,7 @@ void check(const ReceiverParams& p, int pulses, Tally& tally) {
     for (int k = run; k < run + 256; ++k) {
       const double background = backgrounds[k % 3];
       // With the noise on, only pulses of a group without a false trigger reach the batch.
-      if (noise.on() && !noise.group_has_no_trigger(background, kSeed, kFrame, k)) continue;
+      if (noise.on() && !noise.group_has_no_trigger(background, kSeed, kBatchFrame, k)) continue;
       candidates.push_back(candidate_for(k, random, p));
       pulse_of.push_back(k);
       batch.add(candidates.back(), background, normals[static_cast<std::size_t>(k - run)]);
@@ -98,7 +98,7 @@ void check(const ReceiverParams& p, int pulses, Tally& tally) {
       // Different leftovers in the unused entries: only the counted ones may matter.
       expected.returns[0].range_m = 1.0;
       got.returns[0].range_m = 2.0;
-      select_single_return(candidates[slot], p, kSeed, kFrame, k, expected, pulse_noise);
+      select_single_return(candidates[slot], p, kSeed, kBatchFrame, k, expected, pulse_noise);
       batch.write(slot, candidates[slot], got);
       (got.count == 1 ? tally.one_return : tally.no_return) += 1;
       ASSERT_EQ(got.count, expected.count) << k;

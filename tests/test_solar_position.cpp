@@ -144,7 +144,7 @@ TEST(SolarPosition, UtcTimesParseExactly) {
   EXPECT_EQ(parse_utc_time("2100-12-31T23:59:59Z").year, 2100);
 }
 
-std::string error_of(const std::string& text) {
+std::string solar_error_of(const std::string& text) {
   try {
     (void)parse_utc_time(text);
   } catch (const Error& error) {
@@ -160,23 +160,23 @@ TEST(SolarPosition, MalformedTimesAreRefusedWithTheText) {
         "2026-06-21T10:30Z", "2026-6-21T10:30:00Z", "2026-06-21T10:30:00.Z",
         "2026-06-21T10:30:00Zjunk", "2026-06-21T10:30:00 Z", "+2026-06-21T10:30:00Z",
         "2026-06-21T10:30:00+0000"}) {
-    EXPECT_EQ(error_of(text), expected + text + "'") << text;
+    EXPECT_EQ(solar_error_of(text), expected + text + "'") << text;
   }
-  EXPECT_EQ(error_of("2026-06-21T10:30:00+02:00"),
+  EXPECT_EQ(solar_error_of("2026-06-21T10:30:00+02:00"),
             "must be a UTC time (ending in Z), got the offset +02:00 in "
             "'2026-06-21T10:30:00+02:00'");
-  EXPECT_EQ(error_of("1899-12-31T23:59:59Z"),
+  EXPECT_EQ(solar_error_of("1899-12-31T23:59:59Z"),
             "the year must be in 1900..2100, got '1899-12-31T23:59:59Z'");
-  EXPECT_EQ(error_of("2101-01-01T00:00:00Z"),
+  EXPECT_EQ(solar_error_of("2101-01-01T00:00:00Z"),
             "the year must be in 1900..2100, got '2101-01-01T00:00:00Z'");
-  EXPECT_EQ(error_of("2026-13-01T00:00:00Z"), "no month 13 in '2026-13-01T00:00:00Z'");
-  EXPECT_EQ(error_of("2026-02-29T00:00:00Z"), "no day 29 in that month: '2026-02-29T00:00:00Z'");
-  EXPECT_EQ(error_of("2100-02-29T00:00:00Z"), "no day 29 in that month: '2100-02-29T00:00:00Z'");
-  EXPECT_EQ(error_of("2026-04-31T00:00:00Z"), "no day 31 in that month: '2026-04-31T00:00:00Z'");
-  EXPECT_EQ(error_of("2026-04-00T00:00:00Z"), "no day 0 in that month: '2026-04-00T00:00:00Z'");
+  EXPECT_EQ(solar_error_of("2026-13-01T00:00:00Z"), "no month 13 in '2026-13-01T00:00:00Z'");
+  EXPECT_EQ(solar_error_of("2026-02-29T00:00:00Z"), "no day 29 in that month: '2026-02-29T00:00:00Z'");
+  EXPECT_EQ(solar_error_of("2100-02-29T00:00:00Z"), "no day 29 in that month: '2100-02-29T00:00:00Z'");
+  EXPECT_EQ(solar_error_of("2026-04-31T00:00:00Z"), "no day 31 in that month: '2026-04-31T00:00:00Z'");
+  EXPECT_EQ(solar_error_of("2026-04-00T00:00:00Z"), "no day 0 in that month: '2026-04-00T00:00:00Z'");
   for (const std::string text :
        {"2026-06-21T24:00:00Z", "2026-06-21T10:60:00Z", "2026-06-21T10:30:60Z"}) {
-    EXPECT_EQ(error_of(text), "not a time of day (00:00:00 to 23:59:59): '" + text + "'");
+    EXPECT_EQ(solar_error_of(text), "not a time of day (00:00:00 to 23:59:59): '" + text + "'");
   }
 }
 

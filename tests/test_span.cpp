@@ -46,7 +46,8 @@ SpanSpec sloped_span() {
   return spec;
 }
 
-void expect_near(const Eigen::Vector3d& actual, const Eigen::Vector3d& expected, double tol) {
+void expect_vectors_near(const Eigen::Vector3d& actual, const Eigen::Vector3d& expected,
+                         double tol) {
   EXPECT_LT((actual - expected).norm(), tol)
       << actual.transpose() << " vs " << expected.transpose();
 }
@@ -75,8 +76,8 @@ TEST(Span, SupportsStandOnSlopedTerrain) {
   EXPECT_EQ(wire.id, "hill/1");
   EXPECT_DOUBLE_EQ(wire.radius_m, 0.010);
   EXPECT_DOUBLE_EQ(wire.reflectivity, 0.4);
-  expect_near(wire.points_enu_m.front(), {10, 20, ground_1 + 30.0}, 1e-9);
-  expect_near(wire.points_enu_m.back(), {310, 170, ground_2 + 25.0}, 1e-9);
+  expect_vectors_near(wire.points_enu_m.front(), {10, 20, ground_1 + 30.0}, 1e-9);
+  expect_vectors_near(wire.points_enu_m.back(), {310, 170, ground_2 + 25.0}, 1e-9);
   // S above the lower support's ground, reached within the 1 mm sampling.
   const double lowest = lowest_u(wire);
   EXPECT_GE(lowest, ground_1 + 12.0 - 1e-9);
@@ -107,8 +108,8 @@ TEST(Span, SupportsStandOnSlopedTerrain) {
   const auto top = [](const Cylinder& pole) {
     return Eigen::Vector3d(pole.base_enu_m + Eigen::Vector3d(0, 0, pole.height_m));
   };
-  expect_near(top(span.poles[0]), wire.points_enu_m.front(), 1e-9);
-  expect_near(top(span.poles[1]), wire.points_enu_m.back(), 1e-9);
+  expect_vectors_near(top(span.poles[0]), wire.points_enu_m.front(), 1e-9);
+  expect_vectors_near(top(span.poles[1]), wire.points_enu_m.back(), 1e-9);
 }
 
 TEST(Span, SeptTowerOnSlopedTerrain) {
@@ -124,10 +125,10 @@ TEST(Span, SeptTowerOnSlopedTerrain) {
     const Conductor& wire = span.conductors[i];
     const Eigen::Vector2d start = Eigen::Vector2d(10, 20) + offset.lateral_m * right;
     const Eigen::Vector2d end = Eigen::Vector2d(310, 170) + offset.lateral_m * right;
-    expect_near(wire.points_enu_m.front(),
-                {start.x(), start.y(), ground_1 + 30.0 + offset.vertical_m}, 1e-9);
-    expect_near(wire.points_enu_m.back(), {end.x(), end.y(), ground_2 + 25.0 + offset.vertical_m},
-                1e-9);
+    expect_vectors_near(wire.points_enu_m.front(),
+                        {start.x(), start.y(), ground_1 + 30.0 + offset.vertical_m}, 1e-9);
+    expect_vectors_near(wire.points_enu_m.back(),
+                        {end.x(), end.y(), ground_2 + 25.0 + offset.vertical_m}, 1e-9);
     EXPECT_NEAR(lowest_u(wire), ground_1 + 12.0 + offset.vertical_m, 1e-3);
   }
   // The tower's top is the earth wire: the poles reach the support heights.

@@ -30,10 +30,10 @@ TEST(Utf8Text, AcceptsEveryValidFormAndPointsAtTheFirstBadByte) {
   EXPECT_EQ(invalid_utf8_offset("\x80"), 0u);                        // a lone continuation
 }
 
-constexpr const char* kMinimal = test::kMinimalScenario;
+constexpr const char* kMinimalUtf8 = test::kMinimalScenario;
 
 TEST(Utf8Text, ALatin1IdIsRefusedAtItsLine) {
-  const std::string yaml = std::string(kMinimal) +
+  const std::string yaml = std::string(kMinimalUtf8) +
                            "scene:\n  poles:\n    - {id: \"Mast \xE9\", at: {e: 1, n: 1}, "
                            "height_m: 5, diameter_m: 1}\n";
   try {
@@ -44,7 +44,7 @@ TEST(Utf8Text, ALatin1IdIsRefusedAtItsLine) {
               "s.yaml:9: not UTF-8 text (byte 0xE9): owsim reads every text as UTF-8; save the "
               "file as UTF-8");
   }
-  Scenario scenario = load_scenario_text(kMinimal, "s.yaml");
+  Scenario scenario = load_scenario_text(kMinimalUtf8, "s.yaml");
   scenario.name = "Flug \xFC";
   try {
     validate_scenario(scenario);

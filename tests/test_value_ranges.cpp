@@ -22,9 +22,9 @@
 namespace owsim {
 namespace {
 
-constexpr const char* kMinimal = test::kMinimalScenario;
+constexpr const char* kMinimalScenario = test::kMinimalScenario;
 
-std::string error_of(const std::string& yaml) {
+std::string range_error_of(const std::string& yaml) {
   try {
     (void)load_scenario_text(yaml, "s.yaml");
   } catch (const Error& error) {
@@ -74,7 +74,7 @@ TEST(ValueRanges, EveryRowIsARangeAndItsEndsPass) {
 }
 
 TEST(ValueRanges, HostileNumbersAreRefusedAtTheirLineAndKey) {
-  const std::string m = kMinimal;
+  const std::string m = kMinimalScenario;
   struct Case {
     std::string yaml;
     std::string want;  // the whole message
@@ -115,19 +115,19 @@ TEST(ValueRanges, HostileNumbersAreRefusedAtTheirLineAndKey) {
       {m + "weather:\n  fog: [{id: terrain, visibility_m: 20}]\n",
        "s.yaml:8: weather.fog[0].id: 'terrain' is the ground's id (points.csv's object column)"},
   };
-  for (const Case& c : cases) EXPECT_EQ(error_of(c.yaml), c.want) << c.yaml;
+  for (const Case& c : cases) EXPECT_EQ(range_error_of(c.yaml), c.want) << c.yaml;
 }
 
 TEST(ValueRanges, SizesThatOnlyTogetherRunAwayAreRefused) {
   // Each within its range, together a frame of 10 M pulses or a route of 4.6 days whose samples
   // are all held in memory.
-  const std::string frame =
-      error_of(std::string(kMinimal) + "sensor: {fibers_per_line: 1024, lines_per_frame: 10000}\n");
+  const std::string frame = range_error_of(
+      std::string(kMinimalScenario) + "sensor: {fibers_per_line: 1024, lines_per_frame: 10000}\n");
   EXPECT_NE(frame.find("sensor.lines_per_frame: fibers_per_line × lines_per_frame = 10240000 "
                        "pulses per frame, more than 1048576"),
             std::string::npos)
       << frame;
-  Scenario crawl = load_scenario_text(kMinimal, "s.yaml");
+  Scenario crawl = load_scenario_text(kMinimalScenario, "s.yaml");
   crawl.trajectory.speed_mps = 1.0;
   crawl.trajectory.waypoints_enu_m = {{-199'000.0, 0.0, 100.0}, {199'000.0, 0.0, 100.0}};
   try {
@@ -141,7 +141,7 @@ TEST(ValueRanges, SizesThatOnlyTogetherRunAwayAreRefused) {
 }
 
 TEST(ValueRanges, AScenarioBuiltInCodeIsHeldToTheSameTable) {
-  const Scenario base = load_scenario_text(kMinimal, "s.yaml");
+  const Scenario base = load_scenario_text(kMinimalScenario, "s.yaml");
   const auto error_of_built = [&](auto change) -> std::string {
     Scenario scenario = base;
     change(scenario);
@@ -226,9 +226,9 @@ TEST(ValueRanges, TheReceiverRefusesNonFiniteStatisticsAndSun) {
 }
 
 TEST(ValueRanges, TooManyFogVolumesAreRefusedAtTheirLine) {
-  std::string yaml = std::string(kMinimal) + "weather:\n  fog:\n";
+  std::string yaml = std::string(kMinimalScenario) + "weather:\n  fog:\n";
   for (int i = 0; i < 33; ++i) yaml += "    - {id: f" + std::to_string(i) + ", visibility_m: 20}\n";
-  EXPECT_EQ(error_of(yaml), "s.yaml:8: weather.fog: at most 32 volumes, got 33");
+  EXPECT_EQ(range_error_of(yaml), "s.yaml:8: weather.fog: at most 32 volumes, got 33");
 }
 
 }  // namespace

@@ -17,16 +17,15 @@
 namespace owsim {
 namespace {
 
-const LocalFrame kFrame(Geodetic{48.6881, 10.8447, 450.0});
-constexpr double kPi = std::numbers::pi;
+const LocalFrame kPlanFrame(Geodetic{48.6881, 10.8447, 450.0});
 
-TrajectoryOptions no_smoothing() {
+TrajectoryOptions plan_without_smoothing() {
   TrajectoryOptions options;
   options.smoothing = {1, 0};
   return options;
 }
 
-double angle_difference_deg(double a, double b) { return wrap_180_deg(a - b); }
+double heading_difference_deg(double a, double b) { return wrap_180_deg(a - b); }
 
 std::string error_text(const WaypointPlan& plan) {
   try {
@@ -42,7 +41,7 @@ TEST(WaypointPlan, TurnRadiusAndBank) {
   EXPECT_NEAR(turn_radius_m(40.0, 30.0), 282.5920, 1e-4);
   EXPECT_NEAR(turn_radius_m(60.0, 45.0), 3600.0 / 9.80665, 1e-9);
   // φ = atan(v ψ̇ / g) inverts it: ψ̇ = v / R.
-  const double rate_deg_per_s = 40.0 / turn_radius_m(40.0, 30.0) * 180.0 / kPi;
+  const double rate_deg_per_s = 40.0 / turn_radius_m(40.0, 30.0) * 180.0 / std::numbers::pi;
   EXPECT_NEAR(coordinated_bank_deg(40.0, rate_deg_per_s), 30.0, 1e-12);
   EXPECT_NEAR(coordinated_bank_deg(40.0, -rate_deg_per_s), -30.0, 1e-12);
   EXPECT_EQ(coordinated_bank_deg(40.0, 0.0), 0.0);
@@ -56,8 +55,8 @@ TEST(WaypointPlan, StraightLevelLegAtFortyMetresPerSecond) {
   EXPECT_EQ(track.time_s.front(), 0.0);
   EXPECT_NEAR(track.time_s.back(), 1600.0 / 40.0, 1e-12);
   EXPECT_EQ(track.time_s.size(), 40u * 50u + 1u);  // 50 Hz
-  for (const TrajectoryOptions& options : {no_smoothing(), TrajectoryOptions{}}) {
-    const Trajectory trajectory(track, kFrame, options);
+  for (const TrajectoryOptions& options : {plan_without_smoothing(), TrajectoryOptions{}}) {
+    const Trajectory trajectory(track, kPlanFrame, options);
     for (double t = 0.0; t <= 40.0; t += 0.37) {
       const Pose pose = trajectory.pose_at(t);
       EXPECT_NEAR((pose.position_enu_m - Eigen::Vector3d(-1200 + 40 * t, 0, 100)).norm(), 0.0,
@@ -76,14 +75,15 @@ TEST(WaypointPlan, ClimbingLegPitchIsTheFlightPathAngle) {
   const NavTrack track = waypoint_track(plan);
   const double length_m = std::hypot(1000.0, 100.0);
   EXPECT_NEAR(track.time_s.back(), length_m / 40.0, 1e-12);
-  const Trajectory trajectory(track, kFrame, no_smoothing());
+  const Trajectory trajectory(track, kPlanFrame, plan_without_smoothing());
   const Eigen::Vector3d along = Eigen::Vector3d(0, 1000, 100) / length_m;
   for (double t = 0.0; t <= track.time_s.back(); t += 0.5) {
     const Pose pose = trajectory.pose_at(t);
     EXPECT_NEAR((pose.position_enu_m - (Eigen::Vector3d(0, 0, 100) + 40.0 * t * along)).norm(), 0.0,
                 1e-9);
-    EXPECT_NEAR(pose.attitude.pitch_deg, std::atan(0.1) * 180.0 / kPi, 1e-9);  // 5.7106°
-    EXPECT_NEAR(angle_difference_deg(pose.attitude.heading_deg, 0.0), 0.0, 1e-9);
+    EXPECT_NEAR(pose.attitude.pitch_deg, std::atan(0.1) * 180.0 / std::numbers::pi,
+                1e-9);  // 5.7106°
+    EXPECT_NEAR(heading_difference_deg(pose.attitude.heading_deg, 0.0), 0.0, 1e-9);
     EXPECT_NEAR(pose.attitude.roll_deg, 0.0, 1e-12);
   }
 }
@@ -93,21 +93,21 @@ TEST(WaypointPlan, NinetyDegreeCornerIsACoordinatedFillet) {
   plan.speed_mps = 40;
   plan.points_enu_m = {{0, 0, 100}, {0, 1000, 100}, {1000, 1000, 100}};  // north, then east
   const double radius_m = turn_radius_m(40.0, 30.0);
-  const double arc_m = kPi / 2 * radius_m;
+  const double arc_m = std::numbers::pi / 2 * radius_m;
   const double path_m = 2 * (1000.0 - radius_m) + arc_m;  // tangent distance R·tan 45° = R
   const NavTrack track = waypoint_track(plan);
   EXPECT_NEAR(track.time_s.back(), path_m / 40.0, 1e-9);
 
   const double entry_s = (1000.0 - radius_m) / 40.0;
   const double mid_s = entry_s + 0.5 * arc_m / 40.0;
-  for (const TrajectoryOptions& options : {no_smoothing(), TrajectoryOptions{}}) {
-    const Trajectory trajectory(track, kFrame, options);
+  for (const TrajectoryOptions& options : {plan_without_smoothing(), TrajectoryOptions{}}) {
+    const Trajectory trajectory(track, kPlanFrame, options);
     EXPECT_NEAR(trajectory.pose_at(0.0).attitude.heading_deg, 0.0, 1e-9);
     EXPECT_NEAR(trajectory.pose_at(trajectory.end_s()).attitude.heading_deg, 90.0, 1e-9);
     // Mid-turn: heading 45°, rate v/R, bank atan(v ψ̇ / g) = 30°.
     const Pose mid = trajectory.pose_at(mid_s);
     const double rate = trajectory.heading_rate_deg_per_s(mid_s);
-    EXPECT_NEAR(rate, 40.0 / radius_m * 180.0 / kPi, 1e-3);
+    EXPECT_NEAR(rate, 40.0 / radius_m * 180.0 / std::numbers::pi, 1e-3);
     EXPECT_NEAR(mid.attitude.roll_deg, coordinated_bank_deg(40.0, rate), 0.5);
     EXPECT_NEAR(mid.attitude.roll_deg, 30.0, 0.5);
     EXPECT_NEAR(mid.attitude.heading_deg, 45.0, 1e-3);
@@ -145,7 +145,7 @@ TEST(WaypointPlan, RollRampsInAndOutContinuously) {
   EXPECT_EQ(track.attitude.front().roll_deg, 0.0);
   EXPECT_EQ(track.attitude.back().roll_deg, 0.0);
   const double entry_s = (1000.0 - turn_radius_m(40.0, 30.0)) / 40.0;
-  const Trajectory trajectory(track, kFrame, no_smoothing());
+  const Trajectory trajectory(track, kPlanFrame, plan_without_smoothing());
   EXPECT_NEAR(trajectory.pose_at(entry_s).attitude.roll_deg, -15.0, 0.05);  // ramp centred on entry
   EXPECT_NEAR(trajectory.pose_at(entry_s - 0.6).attitude.roll_deg, 0.0, 0.05);
   EXPECT_LT(trajectory.heading_rate_deg_per_s(entry_s + 2.0), -7.0);  // heading decreasing
@@ -169,9 +169,10 @@ TEST(WaypointPlan, ClimbingThroughATurn) {
   // corner's height: path = (1000 − R)·√1.01 + √((πR/2)² + (0.1 R)²) + (1000 − R).
   const double radius_m = turn_radius_m(40.0, 30.0);
   const double path_m = (1000.0 - radius_m) * std::sqrt(1.01) +
-                        std::hypot(kPi / 2 * radius_m, 0.1 * radius_m) + (1000.0 - radius_m);
+                        std::hypot(std::numbers::pi / 2 * radius_m, 0.1 * radius_m) +
+                        (1000.0 - radius_m);
   EXPECT_NEAR(track.time_s.back(), path_m / 40.0, 1e-9);
-  const Trajectory trajectory(track, kFrame, no_smoothing());
+  const Trajectory trajectory(track, kPlanFrame, plan_without_smoothing());
   EXPECT_NEAR(trajectory.pose_at(trajectory.end_s()).position_enu_m.z(), 200.0, 1e-9);
   EXPECT_NEAR(
       (trajectory.pose_at(trajectory.end_s()).position_enu_m - Eigen::Vector3d(1000, 1000, 200))
@@ -235,7 +236,7 @@ TEST(WaypointPlan, StraightThroughACollinearWaypoint) {
   EXPECT_NEAR(track.time_s.back(), 25.0, 1e-12);
   for (const Attitude& attitude : track.attitude) {
     EXPECT_EQ(attitude.roll_deg, 0.0);
-    EXPECT_NEAR(angle_difference_deg(attitude.heading_deg, 0.0), 0.0, 1e-12);
+    EXPECT_NEAR(heading_difference_deg(attitude.heading_deg, 0.0), 0.0, 1e-12);
   }
 }
 

@@ -77,14 +77,14 @@ class WriterResume : public ::testing::Test {
   fs::path dir_;
 };
 
-std::string content(const fs::path& path) {
+std::string file_content(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
   return {std::istreambuf_iterator<char>(in), {}};
 }
 
 // Whether the two files hold the same bytes; if not, says where they first differ.
 ::testing::AssertionResult same_bytes(const fs::path& a, const fs::path& b) {
-  const std::string bytes_a = content(a), bytes_b = content(b);
+  const std::string bytes_a = file_content(a), bytes_b = file_content(b);
   if (bytes_a == bytes_b) return ::testing::AssertionSuccess();
   std::size_t at = 0;
   while (at < bytes_a.size() && at < bytes_b.size() && bytes_a[at] == bytes_b[at]) ++at;
@@ -132,7 +132,7 @@ TEST_F(WriterResume, AtomicOutputFileResumeCutsBackAndAppends) {
   file.write("more");
   file.write_at(0, "K", 1);
   file.commit();
-  EXPECT_EQ(content(resumed("a.bin")), "Kept|more");
+  EXPECT_EQ(file_content(resumed("a.bin")), "Kept|more");
 }
 
 TEST_F(WriterResume, AtomicOutputFileRefusesAMissingOrShortTemporaryAndKeepsIt) {
@@ -152,7 +152,7 @@ TEST_F(WriterResume, AtomicOutputFileRefusesAMissingOrShortTemporaryAndKeepsIt) 
     EXPECT_NE(std::string(e.what()).find("holds 3 bytes, the checkpoint 4"), std::string::npos)
         << e.what();
   }
-  EXPECT_EQ(content(partial), "abc");  // a refused resume leaves the temporary as it was
+  EXPECT_EQ(file_content(partial), "abc");  // a refused resume leaves the temporary as it was
 }
 
 TEST_F(WriterResume, WordsContinueByteForByte) {
@@ -267,7 +267,7 @@ TEST_F(WriterResume, PlyContinuesAndCountsEveryVertex) {
   save_temporary("points.ply");
   writer.write(second);
   writer.finish();
-  EXPECT_NE(content(reference("points.ply")).find("element vertex 1150\n"), std::string::npos);
+  EXPECT_NE(file_content(reference("points.ply")).find("element vertex 1150\n"), std::string::npos);
 
   leave_killed_temporary("points.ply");
   PlyWriter again = PlyWriter::resume(resumed("points.ply"), *through_file(checkpoint).points_ply,

@@ -4,7 +4,8 @@
 #include "sensor/range_counter.hpp"
 
 namespace owsim {
-namespace {
+// Where each field sits in the word (as milows_bits does for MilOWS).
+namespace hellas_bits {
 
 constexpr int kSelectBit = 31;
 constexpr int kZtBit = 30;
@@ -18,9 +19,10 @@ constexpr std::uint32_t kCounterMask = 0xFFF;
 std::uint32_t flag(bool value, int bit) { return static_cast<std::uint32_t>(value) << bit; }
 bool test(std::uint32_t bits, int bit) { return ((bits >> bit) & 1u) != 0; }
 
-}  // namespace
+}  // namespace hellas_bits
 
 std::uint32_t pack(const HellasWord& word) {
+  using namespace hellas_bits;
   require_field_width("HELLAS", "time tag", word.time_tag, kHellasTimeTagMax);
   require_field_width("HELLAS", "counter", word.counter, kCounterMax);
   return flag(word.select, kSelectBit) | flag(word.zt, kZtBit) |
@@ -30,6 +32,7 @@ std::uint32_t pack(const HellasWord& word) {
 }
 
 HellasWord unpack_hellas(std::uint32_t bits) {
+  using namespace hellas_bits;
   HellasWord word;
   word.select = test(bits, kSelectBit);
   word.zt = test(bits, kZtBit);

@@ -3,13 +3,12 @@
 namespace owsim {
 namespace {
 
-using namespace milows_bits;
-
 bool test(std::uint64_t bits, int bit) { return ((bits >> bit) & 1u) != 0; }
 
 }  // namespace
 
 MilowsWord unpack_milows(std::uint64_t bits) {
+  using namespace milows_bits;
   MilowsWord word;
   word.time_tag = static_cast<std::uint16_t>(bits >> kTimeTagShift);
   word.encoder = static_cast<EncoderCount>(static_cast<std::uint16_t>(bits >> kEncoderShift));

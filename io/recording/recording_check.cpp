@@ -26,8 +26,6 @@ struct TimeTagClock {
 constexpr TimeTagClock kMilowsClock{kMilowsTimeTagTickS, kMilowsTimeTagModulus};
 constexpr TimeTagClock kHellasClock{kHellasTimeTagTickS, kHellasTimeTagModulus};
 
-constexpr std::size_t kChunkWords = std::size_t{1} << 16;
-
 bool is_problem(RecordingIssueKind kind) { return kind < RecordingIssueKind::partial_frame; }
 
 // Keeps the first `max_listed` problems and notes, counts all of them.
@@ -105,7 +103,7 @@ class CounterHistogram {
 };
 
 // One pulse as the structure check sees it, whatever the format (gates active-high here).
-struct Pulse {
+struct CheckedPulse {
   std::uint64_t word = 0;
   bool frame_gate = false;
   bool line_gate = false;
@@ -136,7 +134,7 @@ class StructureCheck {
         returns_per_fiber_(static_cast<std::size_t>(std::max(0, scan.fibers_per_line))),
         second_returns_per_fiber_(second_counter ? returns_per_fiber_.size() : 0) {}
 
-  PulseEvents add(const Pulse& pulse) {
+  PulseEvents add(const CheckedPulse& pulse) {
     PulseEvents events;
     events.frame_start = frame_pulses_ == 0;
     events.line_start = line_pulses_ == 0;
@@ -230,7 +228,7 @@ class StructureCheck {
     return static_cast<std::uint32_t>(std::max(1.0, std::ceil(ticks_per_pulse - 1e-12)));
   }
 
-  void check_time_tag(const Pulse& pulse) {
+  void check_time_tag(const CheckedPulse& pulse) {
     if (pulses_ == 0) {
       first_tag_ = last_tag_ = pulse.time_tag;
       return;
@@ -285,7 +283,7 @@ class StructureCheck {
     line_start_known_ = true;
   }
 
-  void end_line(const Pulse& pulse) {
+  void end_line(const CheckedPulse& pulse) {
     const bool partial_first_line = !line_start_known_ && line_pulses_ < fibers_per_line_;
     if (pulse.frame_gate && !pulse.line_gate) {
       log_.add(pulse.word, RecordingIssueKind::frame_gate_without_line_gate,
@@ -303,7 +301,7 @@ class StructureCheck {
   }
 
   // Returns whether the frame just closed is complete.
-  bool end_frame(const Pulse& pulse) {
+  bool end_frame(const CheckedPulse& pulse) {
     const bool complete = frame_pulses_ == pulses_per_frame_;
     if (complete) {
       ++complete_frames_;
@@ -487,7 +485,7 @@ class HellasCheck {
 
 template <typename Word, typename OnWord>
 void for_each_word(WordFileReader<Word>& reader, OnWord on_word) {
-  std::vector<Word> chunk(kChunkWords);
+  std::vector<Word> chunk(kWordReadChunk);
   std::uint64_t index = 0;
   while (const std::size_t count = reader.read(chunk)) {
     for (std::size_t i = 0; i < count; ++i) on_word(chunk[i], index++);

@@ -17,7 +17,6 @@
 namespace owsim {
 namespace {
 
-constexpr std::size_t kChunkWords = std::size_t{1} << 16;
 // How far the scenario's grid time may lie outside the window the tags leave and still count as
 // on it: far below the pulse period (16 µs), far above double rounding.
 constexpr double kGridToleranceS = 1e-6;
@@ -146,10 +145,10 @@ class RecordingDecoder::WordSource {
   WordSource(const std::filesystem::path& path, SensorModel model) {
     if (model == SensorModel::milows) {
       milows_ = std::make_unique<MilowsWordReader>(path);
-      milows_buffer_.resize(kChunkWords);
+      milows_buffer_.resize(kWordReadChunk);
     } else {
       hellas_ = std::make_unique<HellasWordReader>(path);
-      hellas_buffer_.resize(kChunkWords);
+      hellas_buffer_.resize(kWordReadChunk);
     }
   }
 

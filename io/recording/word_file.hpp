@@ -22,6 +22,8 @@
 namespace owsim {
 
 inline constexpr std::size_t kWordFileBufferBytes = std::size_t{1} << 20;
+// How many words a reader of a whole recording takes from WordFileReader::read at a time.
+inline constexpr std::size_t kWordReadChunk = std::size_t{1} << 16;
 
 // Word: std::uint64_t (MilOWS) or std::uint32_t (HELLAS).
 template <typename Word>

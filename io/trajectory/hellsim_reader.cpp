@@ -12,18 +12,13 @@
 namespace owsim {
 namespace {
 
-constexpr std::size_t kColumns = 15;
-constexpr std::array<std::string_view, kColumns> kColumnNames = {
+constexpr std::size_t kHellsimColumns = 15;
+constexpr std::array<std::string_view, kHellsimColumns> kHellsimColumnNames = {
     "Pic #", "Time-Tag", "Heading", "Pitch", "Roll",     "X-Vel", "Y-Vel",   "Z-Vel",
     "N-Vel", "E-Vel",    "D-Vel",   "Veloc", "Latitude", "Long.", "Altitude"};
-enum Column : std::size_t {
-  tag = 1,
-  heading = 2,
-  pitch = 3,
-  roll = 4,
-  lat = 12,
-  lon = 13,
-  alt = 14
+// The fields read, by their index (a scoped name: these sources build together, CMakeLists.txt).
+struct HellsimColumn {
+  enum : std::size_t { tag = 1, heading = 2, pitch = 3, roll = 4, lat = 12, lon = 13, alt = 14 };
 };
 
 bool is_header_or_comment(std::string_view first_field) {
@@ -50,19 +45,19 @@ std::vector<NavRecord> read_hellsim(const std::string& path, const HellSimOption
     const std::vector<std::string_view> fields = split_whitespace(line);
     if (fields.empty() || is_header_or_comment(fields.front())) continue;
     const std::string where = path + ":" + std::to_string(line_number);
-    if (fields.size() != kColumns) {
-      throw input_error(where, "expected " + std::to_string(kColumns) +
+    if (fields.size() != kHellsimColumns) {
+      throw input_error(where, "expected " + std::to_string(kHellsimColumns) +
                                    " whitespace-separated columns (Pic # … Altitude), found " +
                                    std::to_string(fields.size()));
     }
-    std::array<double, kColumns> value{};
-    for (std::size_t c = 0; c < kColumns; ++c) {
-      value[c] = finite_field(fields[c], path, line_number, kColumnNames[c]);
+    std::array<double, kHellsimColumns> value{};
+    for (std::size_t c = 0; c < kHellsimColumns; ++c) {
+      value[c] = finite_field(fields[c], path, line_number, kHellsimColumnNames[c]);
     }
-    const double tag_value = value[Column::tag];
+    const double tag_value = value[HellsimColumn::tag];
     if (tag_value < 0 || tag_value != std::floor(tag_value)) {
-      throw input_error(where,
-                        "Time-Tag '" + std::string(fields[Column::tag]) + "' is not a whole count");
+      throw input_error(
+          where, "Time-Tag '" + std::string(fields[HellsimColumn::tag]) + "' is not a whole count");
     }
     if (records.empty()) {
       first_tag = unwrapped_tag = tag_value;
@@ -71,11 +66,11 @@ std::vector<NavRecord> read_hellsim(const std::string& path, const HellSimOption
       const auto modulus = static_cast<double>(options.tag_modulus);
       if (step < 0 && options.tag_modulus > 0 && step + modulus <= 0.5 * modulus) step += modulus;
       if (step == 0) {
-        throw input_error(where, "Time-Tag " + std::string(fields[Column::tag]) +
+        throw input_error(where, "Time-Tag " + std::string(fields[HellsimColumn::tag]) +
                                      " repeats the previous record's");
       }
       if (step < 0) {
-        throw input_error(where, "Time-Tag " + std::string(fields[Column::tag]) +
+        throw input_error(where, "Time-Tag " + std::string(fields[HellsimColumn::tag]) +
                                      " goes back from the previous record's " +
                                      std::to_string(std::llround(previous_tag)) +
                                      " (more than a counter wrap explains)");
@@ -85,8 +80,10 @@ std::vector<NavRecord> read_hellsim(const std::string& path, const HellSimOption
     previous_tag = tag_value;
     NavRecord record;
     record.time_s = (unwrapped_tag - first_tag) * options.tick_s;
-    record.position = {value[Column::lat], value[Column::lon], value[Column::alt]};
-    record.attitude = {value[Column::roll], value[Column::pitch], value[Column::heading]};
+    record.position = {value[HellsimColumn::lat], value[HellsimColumn::lon],
+                       value[HellsimColumn::alt]};
+    record.attitude = {value[HellsimColumn::roll], value[HellsimColumn::pitch],
+                       value[HellsimColumn::heading]};
     validate_geodetic(record.position, where);
     records.push_back(record);
   }

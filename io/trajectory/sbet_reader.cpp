@@ -16,20 +16,23 @@ namespace owsim {
 namespace {
 
 constexpr double kDegPerRad = 180.0 / std::numbers::pi;
-constexpr std::array<std::string_view, 17> kFieldNames = {
+constexpr std::array<std::string_view, 17> kSbetFieldNames = {
     "time",           "latitude",       "longitude",      "altitude",       "x velocity",
     "y velocity",     "z velocity",     "roll",           "pitch",          "platform heading",
     "wander angle",   "x acceleration", "y acceleration", "z acceleration", "x angular rate",
     "y angular rate", "z angular rate"};
-enum Field : std::size_t {
-  time = 0,
-  lat = 1,
-  lon = 2,
-  alt = 3,
-  roll = 7,
-  pitch = 8,
-  heading = 9,
-  wander = 10
+// The fields read, by their index (a scoped name: these sources build together, CMakeLists.txt).
+struct SbetField {
+  enum : std::size_t {
+    time = 0,
+    lat = 1,
+    lon = 2,
+    alt = 3,
+    roll = 7,
+    pitch = 8,
+    heading = 9,
+    wander = 10
+  };
 };
 
 }  // namespace
@@ -54,15 +57,16 @@ std::vector<NavRecord> read_sbet(const std::string& path) {
       value[f] = std::bit_cast<double>(load_little_endian<std::uint64_t>(
           reinterpret_cast<const unsigned char*>(bytes.data()) + offset + 8 * f));
       if (!std::isfinite(value[f])) {
-        throw input_error(where, std::string(kFieldNames[f]) + " is not a finite number");
+        throw input_error(where, std::string(kSbetFieldNames[f]) + " is not a finite number");
       }
     }
     NavRecord& record = records[i];
-    record.time_s = value[Field::time];
-    record.position = {kDegPerRad * value[Field::lat], kDegPerRad * value[Field::lon],
-                       value[Field::alt]};
-    record.attitude = {kDegPerRad * value[Field::roll], kDegPerRad * value[Field::pitch],
-                       wrap_360_deg(kDegPerRad * (value[Field::heading] - value[Field::wander]))};
+    record.time_s = value[SbetField::time];
+    record.position = {kDegPerRad * value[SbetField::lat], kDegPerRad * value[SbetField::lon],
+                       value[SbetField::alt]};
+    record.attitude = {
+        kDegPerRad * value[SbetField::roll], kDegPerRad * value[SbetField::pitch],
+        wrap_360_deg(kDegPerRad * (value[SbetField::heading] - value[SbetField::wander]))};
     validate_geodetic(record.position, where);
     if (i > 0 && !(record.time_s > records[i - 1].time_s)) {
       throw input_error(where, "time is not after the previous record's");

@@ -15,7 +15,7 @@ namespace owsim {
 namespace {
 
 constexpr std::size_t kNeeded = 7;
-constexpr std::array<std::string_view, kNeeded> kColumnNames = {
+constexpr std::array<std::string_view, kNeeded> kCsvColumnNames = {
     "time_s", "lat_deg", "lon_deg", "h_m", "roll_deg", "pitch_deg", "heading_deg"};
 
 std::string header_name(std::string_view field) {
@@ -38,7 +38,7 @@ std::array<std::size_t, kNeeded> column_positions(std::string_view header,
   for (std::size_t cell = 0; cell < fields.size(); ++cell) {
     const std::string name = header_name(fields[cell]);
     for (std::size_t c = 0; c < kNeeded; ++c) {
-      if (name != kColumnNames[c]) continue;
+      if (name != kCsvColumnNames[c]) continue;
       if (position[c] != kAbsent) {
         throw input_error(where, "column '" + name + "' appears twice in the header");
       }
@@ -47,7 +47,7 @@ std::array<std::size_t, kNeeded> column_positions(std::string_view header,
   }
   for (std::size_t c = 0; c < kNeeded; ++c) {
     if (position[c] == kAbsent) {
-      throw input_error(where, "the header has no column '" + std::string(kColumnNames[c]) +
+      throw input_error(where, "the header has no column '" + std::string(kCsvColumnNames[c]) +
                                    "' (needs time_s, lat_deg, lon_deg, h_m, roll_deg, pitch_deg, "
                                    "heading_deg)");
     }
@@ -85,7 +85,7 @@ std::vector<NavRecord> read_trajectory_csv(const std::string& path) {
     }
     std::array<double, kNeeded> value{};
     for (std::size_t c = 0; c < kNeeded; ++c) {
-      value[c] = finite_field(cells[position[c]], path, line_number, kColumnNames[c]);
+      value[c] = finite_field(cells[position[c]], path, line_number, kCsvColumnNames[c]);
     }
     NavRecord record;
     record.time_s = value[0];
