@@ -13,7 +13,7 @@
 namespace owsim {
 namespace {
 
-std::string error_of(auto&& call) {
+std::string module_error_of(auto&& call) {
   try {
     call();
   } catch (const Error& e) {
@@ -38,7 +38,7 @@ TEST(OptionalModule, ThePngModuleIsFoundBesideTheBuild) {
 
 TEST(OptionalModule, AMissingModuleNamesItselfWhatNeedsItAndWhereItLooked) {
   const std::string message =
-      error_of([] { static_cast<void>(OptionalModule::get("absent", "the frobnicator")); });
+      module_error_of([] { static_cast<void>(OptionalModule::get("absent", "the frobnicator")); });
   EXPECT_NE(message.find("the frobnicator need the optional module libowsim_absent.so"),
             std::string::npos)
       << message;
@@ -48,14 +48,14 @@ TEST(OptionalModule, AMissingModuleNamesItselfWhatNeedsItAndWhereItLooked) {
 
 TEST(OptionalModule, AMissingEntryPointIsAnError) {
   const OptionalModule& module = OptionalModule::get("png", "this test");
-  const std::string message = error_of([&] { static_cast<void>(module.symbol("no_such")); });
+  const std::string message = module_error_of([&] { static_cast<void>(module.symbol("no_such")); });
   EXPECT_NE(message.find("no_such"), std::string::npos) << message;
 }
 
 TEST(OptionalModule, TheEnvironmentNamesTheOnlyFolder) {
   ASSERT_EQ(::setenv("OWSIM_MODULE_DIR", "/nonexistent/modules", 1), 0);
   const std::string message =
-      error_of([] { static_cast<void>(OptionalModule::get("other", "a test")); });
+      module_error_of([] { static_cast<void>(OptionalModule::get("other", "a test")); });
   ::unsetenv("OWSIM_MODULE_DIR");
   EXPECT_NE(message.find("looked in /nonexistent/modules;"), std::string::npos) << message;
 }
@@ -63,7 +63,7 @@ TEST(OptionalModule, TheEnvironmentNamesTheOnlyFolder) {
 TEST(OptionalModule, AMissingModuleNamesThePackagesThatBringIt) {
   ASSERT_EQ(::setenv("OWSIM_MODULE_DIR", "/nonexistent/modules", 1), 0);
   const std::string message =
-      error_of([] { static_cast<void>(OptionalModule::get("gdal", "DEM terrain (terrain.dem)")); });
+      module_error_of([] { static_cast<void>(OptionalModule::get("gdal", "DEM terrain (terrain.dem)")); });
   ::unsetenv("OWSIM_MODULE_DIR");
   // to build it, and to run the packaged one
   EXPECT_NE(message.find("when libgdal-dev is installed (scripts/setup.sh gdal"), std::string::npos)

@@ -21,7 +21,7 @@
 namespace owsim {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 const Eigen::Vector3d kV0(0.0, 0.0, 0.0);
 const Eigen::Vector3d kV1(10.0, 0.0, 0.0);
@@ -29,7 +29,7 @@ const Eigen::Vector3d kV2(0.0, 10.0, 0.0);
 
 std::optional<TriangleHit> down_at(double e, double n, double height = 5.0) {
   return intersect_triangle(Eigen::Vector3d(e, n, height), -Eigen::Vector3d::UnitZ(), kV0, kV1, kV2,
-                            0.0, kInf);
+                            0.0, kInfinity);
 }
 
 TEST(RayTriangle, VerticalRayHitsInsideWithExactRangeAndUpNormal) {
@@ -58,13 +58,13 @@ TEST(RayTriangle, EdgesAndCornersCount) {
 
 TEST(RayTriangle, BothFacesHitAndTheNormalKeepsItsWinding) {
   const auto from_below = intersect_triangle(Eigen::Vector3d(1.0, 1.0, -4.0),
-                                             Eigen::Vector3d::UnitZ(), kV0, kV1, kV2, 0.0, kInf);
+                                             Eigen::Vector3d::UnitZ(), kV0, kV1, kV2, 0.0, kInfinity);
   ASSERT_TRUE(from_below);
   EXPECT_DOUBLE_EQ(from_below->t, 4.0);
   EXPECT_NEAR((from_below->normal - Eigen::Vector3d::UnitZ()).norm(), 0.0, 1e-15);
   // Reversed winding flips the normal, not the hit.
   const auto reversed = intersect_triangle(Eigen::Vector3d(1.0, 1.0, 4.0),
-                                           -Eigen::Vector3d::UnitZ(), kV0, kV2, kV1, 0.0, kInf);
+                                           -Eigen::Vector3d::UnitZ(), kV0, kV2, kV1, 0.0, kInfinity);
   ASSERT_TRUE(reversed);
   EXPECT_NEAR((reversed->normal + Eigen::Vector3d::UnitZ()).norm(), 0.0, 1e-15);
 }
@@ -72,22 +72,22 @@ TEST(RayTriangle, BothFacesHitAndTheNormalKeepsItsWinding) {
 TEST(RayTriangle, RangeWindowAndDirection) {
   const Eigen::Vector3d origin(1.0, 1.0, 5.0);
   const Eigen::Vector3d down = -Eigen::Vector3d::UnitZ();
-  EXPECT_FALSE(intersect_triangle(origin, -down, kV0, kV1, kV2, 0.0, kInf));   // behind the ray
+  EXPECT_FALSE(intersect_triangle(origin, -down, kV0, kV1, kV2, 0.0, kInfinity));   // behind the ray
   EXPECT_FALSE(intersect_triangle(origin, down, kV0, kV1, kV2, 0.0, 4.999));   // beyond t_max
-  EXPECT_FALSE(intersect_triangle(origin, down, kV0, kV1, kV2, 5.001, kInf));  // before t_min
+  EXPECT_FALSE(intersect_triangle(origin, down, kV0, kV1, kV2, 5.001, kInfinity));  // before t_min
   EXPECT_TRUE(intersect_triangle(origin, down, kV0, kV1, kV2, 5.0, 5.0));      // window is closed
 }
 
 TEST(RayTriangle, ParallelAndDegenerateNeverHit) {
   // A ray in the triangle's plane.
   EXPECT_FALSE(intersect_triangle(Eigen::Vector3d(-5.0, 1.0, 0.0), Eigen::Vector3d::UnitX(), kV0,
-                                  kV1, kV2, 0.0, kInf));
+                                  kV1, kV2, 0.0, kInfinity));
   // A ray parallel above it.
   EXPECT_FALSE(intersect_triangle(Eigen::Vector3d(-5.0, 1.0, 1.0), Eigen::Vector3d::UnitX(), kV0,
-                                  kV1, kV2, 0.0, kInf));
+                                  kV1, kV2, 0.0, kInfinity));
   // Collinear corners.
   EXPECT_FALSE(intersect_triangle(Eigen::Vector3d(1.0, 0.0, 5.0), -Eigen::Vector3d::UnitZ(), kV0,
-                                  kV1, Eigen::Vector3d(20.0, 0.0, 0.0), 0.0, kInf));
+                                  kV1, Eigen::Vector3d(20.0, 0.0, 0.0), 0.0, kInfinity));
 }
 
 TEST(RayTriangle, OblongRayAtKilometreRangeKeepsMillimetres) {
@@ -99,7 +99,7 @@ TEST(RayTriangle, OblongRayAtKilometreRangeKeepsMillimetres) {
   const Eigen::Vector3d dir(std::cos(angle), 0.0, -std::sin(angle));
   const double expected = 60.0 / std::sin(angle);  // from 60 m up
   const Eigen::Vector3d origin = Eigen::Vector3d(1100.0, 0.0, 0.0) - expected * dir;
-  const auto hit = intersect_triangle(origin, dir, a, b, c, 0.0, kInf);
+  const auto hit = intersect_triangle(origin, dir, a, b, c, 0.0, kInfinity);
   ASSERT_TRUE(hit);
   EXPECT_NEAR(hit->t, expected, 1e-9);
 }
@@ -123,8 +123,8 @@ TEST(RayTriangle, SharedEdgesAndCornersLeaveNoGap) {
     const Eigen::Vector3d dir(std::cos(elevation) * std::sin(bearing),
                               std::cos(elevation) * std::cos(bearing), -std::sin(elevation));
     const Eigen::Vector3d origin = target - (100.0 + 1100.0 * unit(rng)) * dir;
-    const auto lower = intersect_triangle(origin, dir, sw, se, ne, 0.0, kInf);
-    const auto upper = intersect_triangle(origin, dir, sw, ne, nw, 0.0, kInf);
+    const auto lower = intersect_triangle(origin, dir, sw, se, ne, 0.0, kInfinity);
+    const auto upper = intersect_triangle(origin, dir, sw, ne, nw, 0.0, kInfinity);
     ASSERT_TRUE(lower || upper) << "trial " << trial;
     const double t = lower ? lower->t : upper->t;
     EXPECT_NEAR((origin + t * dir - target).norm(), 0.0, 1e-6) << "trial " << trial;
@@ -148,7 +148,7 @@ Reference reference_intersect(const Eigen::Vector3d& o, const Eigen::Vector3d& d
   const double t = n.dot(v0 - o) / along;
   const Eigen::Vector3d p = o + t * d;
   const Eigen::Vector3d corners[3] = {v0, v1, v2};
-  Reference result{t >= 0.0, t, kInf};
+  Reference result{t >= 0.0, t, kInfinity};
   for (int i = 0; i < 3; ++i) {
     const Eigen::Vector3d& from = corners[i];
     const Eigen::Vector3d& to = corners[(i + 1) % 3];
@@ -180,7 +180,7 @@ TEST(RayTriangle, AgreesWithPlaneThenInsideOverRandomRays) {
     if (area.norm() < 1.0 || std::abs(area.normalized().dot(dir)) < 1e-3) continue;
     const Reference expected = reference_intersect(origin, dir, v0, v1, v2);
     if (expected.edge_margin < 1e-6) continue;  // too close to an edge to call
-    const auto hit = intersect_triangle(origin, dir, v0, v1, v2, 0.0, kInf);
+    const auto hit = intersect_triangle(origin, dir, v0, v1, v2, 0.0, kInfinity);
     ++compared;
     ASSERT_EQ(hit.has_value(), expected.hit) << "trial " << trial;
     if (!hit) continue;

@@ -22,7 +22,7 @@ Eigen::Vector3d body_to_enu(const Attitude& attitude, const Eigen::Vector3d& bod
   return enu_from_ned(body_to_ned(attitude) * body);
 }
 
-void expect_near(const Eigen::Vector3d& actual, const Eigen::Vector3d& expected, double tol) {
+void expect_components_near(const Eigen::Vector3d& actual, const Eigen::Vector3d& expected, double tol) {
   EXPECT_NEAR(actual.x(), expected.x(), tol) << "actual " << actual.transpose();
   EXPECT_NEAR(actual.y(), expected.y(), tol) << "actual " << actual.transpose();
   EXPECT_NEAR(actual.z(), expected.z(), tol) << "actual " << actual.transpose();
@@ -30,22 +30,22 @@ void expect_near(const Eigen::Vector3d& actual, const Eigen::Vector3d& expected,
 
 TEST(Rotation, AxisRotationsAreRightHandedAndActive) {
   // A positive turn about Z takes X towards Y, about X takes Y towards Z, about Y takes Z to X.
-  expect_near(rotation_z_deg(90) * Eigen::Vector3d(1, 0, 0), {0, 1, 0}, kTol);
-  expect_near(rotation_x_deg(90) * Eigen::Vector3d(0, 1, 0), {0, 0, 1}, kTol);
-  expect_near(rotation_y_deg(90) * Eigen::Vector3d(0, 0, 1), {1, 0, 0}, kTol);
-  expect_near(rotation_z_deg(30) * Eigen::Vector3d(1, 0, 0), {cos_deg(30), sin_deg(30), 0}, kTol);
-  expect_near(rotation_y_deg(30) * Eigen::Vector3d(1, 0, 0), {cos_deg(30), 0, -sin_deg(30)}, kTol);
-  expect_near(rotation_x_deg(30) * Eigen::Vector3d(0, 0, 1), {0, -sin_deg(30), cos_deg(30)}, kTol);
+  expect_components_near(rotation_z_deg(90) * Eigen::Vector3d(1, 0, 0), {0, 1, 0}, kTol);
+  expect_components_near(rotation_x_deg(90) * Eigen::Vector3d(0, 1, 0), {0, 0, 1}, kTol);
+  expect_components_near(rotation_y_deg(90) * Eigen::Vector3d(0, 0, 1), {1, 0, 0}, kTol);
+  expect_components_near(rotation_z_deg(30) * Eigen::Vector3d(1, 0, 0), {cos_deg(30), sin_deg(30), 0}, kTol);
+  expect_components_near(rotation_y_deg(30) * Eigen::Vector3d(1, 0, 0), {cos_deg(30), 0, -sin_deg(30)}, kTol);
+  expect_components_near(rotation_x_deg(30) * Eigen::Vector3d(0, 0, 1), {0, -sin_deg(30), cos_deg(30)}, kTol);
 }
 
 TEST(Rotation, HeadingZeroPointsNoseNorthAndNinetyEast) {
-  expect_near(body_to_enu({0, 0, 0}, kForward), {0, 1, 0}, kTol);
-  expect_near(body_to_enu({0, 0, 90}, kForward), {1, 0, 0}, kTol);
-  expect_near(body_to_enu({0, 0, 180}, kForward), {0, -1, 0}, kTol);
-  expect_near(body_to_enu({0, 0, 270}, kForward), {-1, 0, 0}, kTol);
+  expect_components_near(body_to_enu({0, 0, 0}, kForward), {0, 1, 0}, kTol);
+  expect_components_near(body_to_enu({0, 0, 90}, kForward), {1, 0, 0}, kTol);
+  expect_components_near(body_to_enu({0, 0, 180}, kForward), {0, -1, 0}, kTol);
+  expect_components_near(body_to_enu({0, 0, 270}, kForward), {-1, 0, 0}, kTol);
   // Heading 0: the right wing points east, body down points down.
-  expect_near(body_to_enu({0, 0, 0}, kRight), {1, 0, 0}, kTol);
-  expect_near(body_to_enu({0, 0, 0}, kDown), {0, 0, -1}, kTol);
+  expect_components_near(body_to_enu({0, 0, 0}, kRight), {1, 0, 0}, kTol);
+  expect_components_near(body_to_enu({0, 0, 0}, kDown), {0, 0, -1}, kTol);
 }
 
 TEST(Rotation, PitchUpRaisesTheNose) {
@@ -60,7 +60,7 @@ TEST(Rotation, RollRightLowersTheRightWing) {
   EXPECT_NEAR(wing.z(), -sin_deg(20), kTol);
   EXPECT_NEAR(wing.x(), cos_deg(20), kTol);
   // The nose stays level and north when only rolling.
-  expect_near(body_to_enu({20, 0, 0}, kForward), {0, 1, 0}, kTol);
+  expect_components_near(body_to_enu({20, 0, 0}, kForward), {0, 1, 0}, kTol);
 }
 
 TEST(Rotation, AttitudeIsHeadingThenPitchThenRoll) {
@@ -72,11 +72,11 @@ TEST(Rotation, AttitudeIsHeadingThenPitchThenRoll) {
   EXPECT_GT((body_to_ned(attitude) - other_order).norm(), 0.1);
   // Roll then heading, worked by hand: roll 90° takes the right wing (0,1,0) to down (0,0,1);
   // heading 90° leaves down alone. Heading applied first would take it to south: (−1,0,0).
-  expect_near(body_to_ned({90, 0, 90}) * kRight, {0, 0, 1}, kTol);
+  expect_components_near(body_to_ned({90, 0, 90}) * kRight, {0, 0, 1}, kTol);
   // Pitch 90° takes the nose straight up (NED (0,0,−1)); a heading does not move it.
-  expect_near(body_to_ned({0, 90, 123}) * kForward, {0, 0, -1}, kTol);
+  expect_components_near(body_to_ned({0, 90, 123}) * kForward, {0, 0, -1}, kTol);
   // Pitch 30° with heading 90°: nose east and up.
-  expect_near(body_to_enu({0, 30, 90}, kForward), {cos_deg(30), 0, sin_deg(30)}, kTol);
+  expect_components_near(body_to_enu({0, 30, 90}, kForward), {cos_deg(30), 0, sin_deg(30)}, kTol);
 }
 
 TEST(Rotation, RandomAttitudesAreProperRotations) {
@@ -141,10 +141,10 @@ TEST(Rotation, GimbalLockGivesZeroRollAndTheSameRotation) {
 }
 
 TEST(Rotation, EnuNedSwap) {
-  expect_near(enu_from_ned({1, 2, 3}), {2, 1, -3}, 0.0);
-  expect_near(ned_from_enu({2, 1, -3}), {1, 2, 3}, 0.0);
+  expect_components_near(enu_from_ned({1, 2, 3}), {2, 1, -3}, 0.0);
+  expect_components_near(ned_from_enu({2, 1, -3}), {1, 2, 3}, 0.0);
   const Eigen::Matrix3d m = enu_from_ned_matrix();
-  expect_near(m * Eigen::Vector3d(1, 2, 3), {2, 1, -3}, 0.0);
+  expect_components_near(m * Eigen::Vector3d(1, 2, 3), {2, 1, -3}, 0.0);
   EXPECT_EQ(m.determinant(), 1.0);
   EXPECT_TRUE((m * m).isApprox(Eigen::Matrix3d::Identity(), 0.0));
 }
