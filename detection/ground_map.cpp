@@ -4,25 +4,34 @@
 #include <cmath>
 #include <limits>
 
+#include "detection/plan_cells.hpp"
+
 namespace owsim {
 
 GroundMap::GroundMap(double cell_m, double reach_m)
     : cell_m_(cell_m),
       side_(static_cast<std::int64_t>(std::ceil(2.0 * reach_m / cell_m)) + 4),
+      per_side_(1.0 / static_cast<double>(side_)),
       cells_(static_cast<std::size_t>(side_ * side_)) {}
 
-std::size_t GroundMap::slot(std::int64_t i, std::int64_t j) const {
-  const std::int64_t a = ((i % side_) + side_) % side_;
-  const std::int64_t b = ((j % side_) + side_) % side_;
+std::int64_t GroundMap::wrapped(std::int64_t i) const {
+  // The quotient's estimate is off by at most one for |i| < 2^50; the remainder corrects it.
+  std::int64_t r = i - cell_index(static_cast<double>(i) * per_side_, 1.0) * side_;
+  if (r < 0) r += side_;
+  if (r >= side_) r -= side_;
+  return r;
+}
+
+std::size_t GroundMap::slot(std::int64_t a, std::int64_t b) const {
   return static_cast<std::size_t>(a * side_ + b);
 }
 
 void GroundMap::add(double e, double n, double u) {
-  const auto i = static_cast<std::int64_t>(std::floor(e / cell_m_));
-  const auto j = static_cast<std::int64_t>(std::floor(n / cell_m_));
+  const std::int64_t i = cell_index(e, cell_m_);
+  const std::int64_t j = cell_index(n, cell_m_);
   ++version_;
   constexpr double kNone = std::numeric_limits<double>::infinity();
-  Cell& cell = cells_[slot(i, j)];
+  Cell& cell = cells_[slot(wrapped(i), wrapped(j))];
   if (cell.i != i || cell.j != j) {
     cell = Cell{i, j};
     cell.lowest.fill(kNone);
@@ -43,15 +52,19 @@ void GroundMap::add(double e, double n, double u) {
 }
 
 double GroundMap::ground_u(double e, double n) const {
-  const auto i = static_cast<std::int64_t>(std::floor(e / cell_m_));
-  const auto j = static_cast<std::int64_t>(std::floor(n / cell_m_));
-  const Cell& own = cells_[slot(i, j)];
+  const std::int64_t i = cell_index(e, cell_m_);
+  const std::int64_t j = cell_index(n, cell_m_);
+  const std::int64_t a = wrapped(i), b = wrapped(j);
+  const Cell& own = cells_[slot(a, b)];
   const bool own_cell = own.i == i && own.j == j;
   if (own_cell && own.around_version == version_) return own.around;
+  // The 3×3 cells' rows and columns, wrapped around the table's edges.
+  const std::int64_t rows[3] = {a == 0 ? side_ - 1 : a - 1, a, a + 1 == side_ ? 0 : a + 1};
+  const std::int64_t columns[3] = {b == 0 ? side_ - 1 : b - 1, b, b + 1 == side_ ? 0 : b + 1};
   double lowest = std::numeric_limits<double>::infinity();
   for (std::int64_t di = -1; di <= 1; ++di) {
     for (std::int64_t dj = -1; dj <= 1; ++dj) {
-      const Cell& cell = cells_[slot(i + di, j + dj)];
+      const Cell& cell = cells_[slot(rows[di + 1], columns[dj + 1])];
       if (cell.i == i + di && cell.j == j + dj) lowest = std::min(lowest, cell.ground);
     }
   }

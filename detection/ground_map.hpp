@@ -40,10 +40,16 @@ class GroundMap {
     mutable double around = 0.0;
     mutable std::uint64_t around_version = 0;
   };
-  [[nodiscard]] std::size_t slot(std::int64_t i, std::int64_t j) const;
+  // A cell index's place along one side of the table: i mod side_, by a multiplication.
+  [[nodiscard]] std::int64_t wrapped(std::int64_t i) const;
+  // Where the cell of wrapped indices (a, b) lies in the table, row by row. (Measured no faster:
+  // tiles of 4 × 4 or 8 × 8 cells; what lookups read apart from what add() reads; prefetching the
+  // cells of the returns ahead.)
+  [[nodiscard]] std::size_t slot(std::int64_t a, std::int64_t b) const;
 
   double cell_m_;
   std::int64_t side_;  // cells per side of the table
+  double per_side_;    // 1 / side_
   std::vector<Cell> cells_;
   std::uint64_t version_ = 1;  // advanced by every add()
 };

@@ -4,10 +4,15 @@
 #include <cmath>
 #include <limits>
 
+#include "detection/plan_cells.hpp"
+
 namespace owsim {
 namespace {
 
 constexpr double kCellM = 1.0;
+
+using Keyed = ClusterScratch::Keyed;
+using Cell = ClusterScratch::Cell;
 
 std::uint32_t root_of(std::vector<std::uint32_t>& parent, std::uint32_t a) {
   while (parent[a] != a) {
@@ -28,10 +33,6 @@ void join(std::vector<std::uint32_t>& parent, std::uint32_t a, std::uint32_t b) 
   }
 }
 
-struct Cell {
-  std::int64_t i, j;
-  std::uint32_t first, count;  // its points in `keyed`
-};
 
 struct Group {
   Eigen::Vector2d lo, hi;
@@ -52,46 +53,36 @@ void find_clusters(std::span<const ObstaclePoint> points, std::span<const std::u
                    const DetectorParams& params, ClusterScratch& scratch,
                    std::vector<PointCluster>& out) {
   out.clear();
-  // Points by plan cell.
-  struct Keyed {
-    std::int64_t i, j;
-    std::uint32_t point;
-  };
-  std::vector<Keyed> keyed;
-  keyed.reserve(points.size());
+  // Points by plan cell: (cell, point) in cell order, a cell's points ascending.
+  std::vector<Keyed>& keyed = scratch.keyed;
+  keyed.clear();
   for (std::uint32_t p = 0; p < points.size(); ++p) {
     if (skip[p]) continue;
-    keyed.push_back({static_cast<std::int64_t>(std::floor(points[p].enu_m.x() / kCellM)),
-                     static_cast<std::int64_t>(std::floor(points[p].enu_m.y() / kCellM)), p});
+    keyed.push_back({plan_cell_key(points[p].enu_m.x(), points[p].enu_m.y(), kCellM), p});
   }
   if (keyed.empty()) return;
   std::sort(keyed.begin(), keyed.end(), [](const Keyed& a, const Keyed& b) {
-    return a.i != b.i ? a.i < b.i : a.j != b.j ? a.j < b.j : a.point < b.point;
+    return a.key != b.key ? a.key < b.key : a.point < b.point;
   });
-  std::vector<Cell> cells;
+  std::vector<Cell>& cells = scratch.cells;
+  cells.clear();
   for (std::uint32_t k = 0; k < keyed.size(); ++k) {
-    if (cells.empty() || cells.back().i != keyed[k].i || cells.back().j != keyed[k].j) {
-      cells.push_back({keyed[k].i, keyed[k].j, k, 0});
-    }
+    if (cells.empty() || cells.back().key != keyed[k].key) cells.push_back({keyed[k].key, k, 0});
     ++cells.back().count;
   }
-  const auto find_cell = [&](std::int64_t i, std::int64_t j) -> std::int64_t {
-    const auto it = std::lower_bound(cells.begin(), cells.end(), std::pair{i, j},
-                                     [](const Cell& c, const std::pair<std::int64_t, std::int64_t>& v) {
-                                       return c.i != v.first ? c.i < v.first : c.j < v.second;
-                                     });
-    if (it == cells.end() || it->i != i || it->j != j) return -1;
-    return it - cells.begin();
-  };
   std::vector<std::uint32_t>& parent = scratch.parent;
   parent.resize(cells.size());
   for (std::uint32_t c = 0; c < cells.size(); ++c) parent[c] = c;
-  // 8-connected cells (the forward half of the neighbourhood suffices).
+  // 8-connected cells (the forward half of the neighbourhood suffices): (i, j + 1) is the next cell
+  // if any, and the row i + 1's cells j − 1 … j + 1 are found by a cursor that only moves forward.
+  std::size_t cursor = 0;
   for (std::uint32_t c = 0; c < cells.size(); ++c) {
-    const std::pair<int, int> forward[] = {{0, 1}, {1, -1}, {1, 0}, {1, 1}};
-    for (const auto& [di, dj] : forward) {
-      const std::int64_t other = find_cell(cells[c].i + di, cells[c].j + dj);
-      if (other >= 0) join(parent, c, static_cast<std::uint32_t>(other));
+    const std::uint64_t key = cells[c].key;
+    if (c + 1 < cells.size() && cells[c + 1].key == key + 1) join(parent, c, c + 1);
+    const std::uint64_t first = key + (std::uint64_t{1} << 32) - 1;  // (i + 1, j − 1)
+    while (cursor < cells.size() && cells[cursor].key < first) ++cursor;
+    for (std::size_t o = cursor; o < cells.size() && cells[o].key <= first + 2; ++o) {
+      join(parent, c, static_cast<std::uint32_t>(o));
     }
   }
   // Groups of connected cells with their plan boxes and nearest range.
@@ -131,24 +122,26 @@ void find_clusters(std::span<const ObstaclePoint> points, std::span<const std::u
       }
     }
   }
-  // Clusters: points of each final root, ordered by their first point.
-  std::vector<std::int64_t> cluster_of(cells.size(), -1);
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> members;  // (cluster root, point)
-  members.reserve(keyed.size());
+  // Clusters: the points of each final root, in the order of their first points, each ascending.
+  std::vector<std::uint32_t>& root_of_point = scratch.root_of_point;
+  root_of_point.resize(points.size());
   for (std::uint32_t c = 0; c < cells.size(); ++c) {
     const std::uint32_t root = root_of(parent, c);
     for (std::uint32_t k = cells[c].first; k < cells[c].first + cells[c].count; ++k) {
-      members.emplace_back(root, keyed[k].point);
+      root_of_point[keyed[k].point] = root;
     }
   }
-  std::sort(members.begin(), members.end());
-  for (std::size_t k = 0; k < members.size(); ++k) {
-    if (k == 0 || members[k].first != members[k - 1].first) out.emplace_back();
-    out.back().points.push_back(members[k].second);
+  std::vector<std::int64_t>& cluster_of = scratch.cluster_of;
+  cluster_of.assign(cells.size(), -1);
+  for (std::uint32_t p = 0; p < points.size(); ++p) {
+    if (skip[p]) continue;
+    std::int64_t& cluster = cluster_of[root_of_point[p]];
+    if (cluster < 0) {
+      cluster = static_cast<std::int64_t>(out.size());
+      out.emplace_back();
+    }
+    out[static_cast<std::size_t>(cluster)].points.push_back(p);
   }
-  std::sort(out.begin(), out.end(), [](const PointCluster& a, const PointCluster& b) {
-    return a.points.front() < b.points.front();
-  });
 }
 
 void find_clusters_without(std::span<const ObstaclePoint> points,

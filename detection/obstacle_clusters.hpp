@@ -20,7 +20,19 @@ struct PointCluster {
 
 // Reused buffers of find_clusters.
 struct ClusterScratch {
+  struct Keyed {
+    std::uint64_t key;  // its plan cell's
+    std::uint32_t point;
+  };
+  struct Cell {
+    std::uint64_t key;
+    std::uint32_t first, count;  // its points in `keyed`
+  };
+  std::vector<Keyed> keyed;
+  std::vector<Cell> cells;
   std::vector<std::uint32_t> parent;
+  std::vector<std::uint32_t> root_of_point;
+  std::vector<std::int64_t> cluster_of;  // by root cell
   std::vector<std::uint8_t> left_out;  // find_clusters_without's
   std::vector<PointCluster> again;
 };

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "detection/median.hpp"
+#include "detection/plan_cells.hpp"
 #include "geometry/error.hpp"
 
 namespace owsim {
@@ -22,12 +23,11 @@ class PlanNeighbours {
   [[nodiscard]] bool any_within(const Eigen::Vector3d& at) const {
     const auto [i, j] = cell(at);
     for (std::int64_t di = -1; di <= 1; ++di) {
-      for (std::int64_t dj = -1; dj <= 1; ++dj) {
-        const std::uint64_t k = pack(i + di, j + dj);
-        auto it = std::lower_bound(entries_.begin(), entries_.end(), Entry{k, 0});
-        for (; it != entries_.end() && it->key == k; ++it) {
-          if ((points_[it->point].enu_m.head<2>() - at.head<2>()).norm() <= r_) return true;
-        }
+      // Cells (i + di, j − 1 … j + 1) have consecutive keys.
+      const std::uint64_t first = plan_cell_key(i + di, j - 1);
+      auto it = std::lower_bound(entries_.begin(), entries_.end(), Entry{first, 0});
+      for (; it != entries_.end() && it->key <= first + 2; ++it) {
+        if ((points_[it->point].enu_m.head<2>() - at.head<2>()).norm() <= r_) return true;
       }
     }
     return false;
@@ -40,16 +40,10 @@ class PlanNeighbours {
     bool operator<(const Entry& o) const { return key != o.key ? key < o.key : point < o.point; }
   };
   [[nodiscard]] std::pair<std::int64_t, std::int64_t> cell(const Eigen::Vector3d& p) const {
-    return {static_cast<std::int64_t>(std::floor(p.x() / r_)),
-            static_cast<std::int64_t>(std::floor(p.y() / r_))};
-  }
-  static std::uint64_t pack(std::int64_t i, std::int64_t j) {
-    return (static_cast<std::uint64_t>(i + (std::int64_t{1} << 31)) << 32) |
-           static_cast<std::uint32_t>(j + (std::int64_t{1} << 31));
+    return {cell_index(p.x(), r_), cell_index(p.y(), r_)};
   }
   [[nodiscard]] std::uint64_t key(const Eigen::Vector3d& p) const {
-    const auto [i, j] = cell(p);
-    return pack(i, j);
+    return plan_cell_key(p.x(), p.y(), r_);
   }
   std::span<const ObstaclePoint> points_;
   double r_;
@@ -235,6 +229,8 @@ void ObstacleDetector::classify(const Eigen::Vector3d& aircraft) {
     solids.push_back(&cluster);
     boxes.push_back(plan_box(points, cluster.points));
   }
+  std::vector<Box> wire_boxes;
+  for (const WireCandidate& wire : wires_) wire_boxes.push_back(plan_box(points, wire.points));
   std::vector<Eigen::Vector3d> member_points;
   for (std::size_t c = 0; c < solids.size(); ++c) {
     const PointCluster& cluster = *solids[c];
@@ -261,6 +257,11 @@ void ObstacleDetector::classify(const Eigen::Vector3d& aircraft) {
     }
     for (std::size_t w = 0; w < wires_.size(); ++w) {
       if (!accepted[w]) continue;
+      // No point of the wire is nearer than its plan box.
+      if (plan_gap_squared_m2(boxes[c].lo, boxes[c].hi, wire_boxes[w].lo, wire_boxes[w].hi) >=
+          isolation_squared) {
+        continue;
+      }
       for (const std::uint32_t p : wires_[w].points) {
         const Eigen::Vector2d wire_at = points[p].enu_m.head<2>();
         isolation_squared = std::min(

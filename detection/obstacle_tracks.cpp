@@ -5,6 +5,8 @@
 #include <limits>
 #include <tuple>
 
+#include "detection/plan_cells.hpp"
+
 namespace owsim {
 namespace {
 
@@ -13,8 +15,7 @@ constexpr double kVoxelM = 1.0;
 
 std::uint64_t voxel_key(const Eigen::Vector3d& p) {
   const auto part = [](double v) {
-    return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(v / kVoxelM)) +
-                                      (std::int64_t{1} << 20)) &
+    return static_cast<std::uint64_t>(cell_index(v, kVoxelM) + (std::int64_t{1} << 20)) &
            0x1FFFFFu;
   };
   return (part(p.x()) << 42) | (part(p.y()) << 21) | part(p.z());
@@ -32,21 +33,37 @@ struct Miss {
   double along_m;
 };
 
+// A point's place along a track's line from its centre, and its distance across it, in plan.
+double along_line_m(const ObstacleTrack& track, const Eigen::Vector3d& p) {
+  return (p.head<2>() - track.centre).dot(track.extent.axis);
+}
+double across_line_m(const ObstacleTrack& track, const Eigen::Vector3d& p) {
+  const Eigen::Vector2d d = p.head<2>() - track.centre;
+  return std::abs(d.x() * track.extent.axis.y() - d.y() * track.extent.axis.x());
+}
+
+// Whether a point may lie within `near` of a wire track (miss_of's distance within 2 × band + 10 %
+// of its distance along the line): no farther across the line than that tolerance at the farthest
+// the nearest remembered point can lie along it (the nearer end of the track's span). A bound by a
+// hair wide, so that no point miss_of calls near is ever ruled out.
+bool may_be_near_wire(const ObstacleTrack& track, const Eigen::Vector3d& p, double band_m) {
+  const double s = along_line_m(track, p);
+  const double farthest = std::min(std::abs(s - track.along_lo_m), std::abs(s - track.along_hi_m));
+  return across_line_m(track, p) <= (2.0 * band_m + 0.1 * farthest) * (1.0 + 1e-9) + 1e-9;
+}
+
 Miss miss_of(const ObstacleTrack& track, const Eigen::Vector3d& p) {
   if (!is_wire(track.kind)) {
     double best = std::numeric_limits<double>::infinity();
     for (const Eigen::Vector3d& r : track.remembered) best = std::min(best, (r - p).squaredNorm());
     return {std::sqrt(best), 0.0};
   }
-  const PlanExtent& line = track.extent;
-  const Eigen::Vector2d& centre = track.centre;
-  const Eigen::Vector2d d = p.head<2>() - centre;
-  const double s = d.dot(line.axis);
-  const double across = std::abs(d.x() * line.axis.y() - d.y() * line.axis.x());
+  const double s = along_line_m(track, p);
+  const double across = across_line_m(track, p);
   const Eigen::Vector3d* nearest = nullptr;
   double nearest_ds = std::numeric_limits<double>::infinity();
   for (const Eigen::Vector3d& r : track.remembered) {
-    const double ds = std::abs((r.head<2>() - centre).dot(line.axis) - s);
+    const double ds = std::abs(along_line_m(track, r) - s);
     if (ds < nearest_ds) {
       nearest_ds = ds;
       nearest = &r;
@@ -90,6 +107,13 @@ void ObstacleTracks::refresh_extent(ObstacleTrack& track) {
   track.centre = Eigen::Vector2d::Zero();
   for (const Eigen::Vector3d& r : track.remembered) track.centre += r.head<2>();
   track.centre /= static_cast<double>(track.remembered.size());
+  track.along_lo_m = std::numeric_limits<double>::infinity();
+  track.along_hi_m = -std::numeric_limits<double>::infinity();
+  for (const Eigen::Vector3d& r : track.remembered) {
+    const double s = along_line_m(track, r);
+    track.along_lo_m = std::min(track.along_lo_m, s);
+    track.along_hi_m = std::max(track.along_hi_m, s);
+  }
   track.extent_points = track.remembered.size();
 }
 
@@ -127,6 +151,13 @@ void ObstacleTracks::update(std::span<const FrameObstacle> obstacles, double tim
       if (!wire && ((lo.array() - reach > track.hi.array()).any() ||
                     (hi.array() + reach < track.lo.array()).any())) {
         continue;
+      }
+      if (wire) {  // a track that cannot have half of the sample near is passed over
+        std::size_t may = 0, samples = 0;
+        for (std::size_t k = 0; k < obstacle.points.size(); k += step, ++samples) {
+          may += may_be_near_wire(track, obstacle.points[k], params_.wire_band_m) ? 1 : 0;
+        }
+        if (2 * may < samples) continue;
       }
       double sum = 0.0;
       std::size_t near = 0, sampled = 0;

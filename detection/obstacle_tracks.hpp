@@ -47,6 +47,7 @@ struct ObstacleTrack {
   // each update): what association, the class and the warning read of it.
   PlanExtent extent;
   Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  double along_lo_m = 0.0, along_hi_m = 0.0;  // the span of `remembered` along extent.axis from centre
   std::size_t extent_points = 0;  // remembered.size() they are of
 };
 

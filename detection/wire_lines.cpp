@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "detection/median.hpp"
+#include "detection/plan_cells.hpp"
 
 namespace owsim {
 namespace {
@@ -31,12 +32,6 @@ const std::array<Direction, kDirections>& directions() {
   return table;
 }
 
-// A plan cell's key: 32 bits of each index (offset so that they sort as signed numbers).
-std::uint64_t cell_key(double e, double n) {
-  const auto i = static_cast<std::int64_t>(std::floor(e / kVoteCellM)) + (std::int64_t{1} << 31);
-  const auto j = static_cast<std::int64_t>(std::floor(n / kVoteCellM)) + (std::int64_t{1} << 31);
-  return (static_cast<std::uint64_t>(i) << 32) | static_cast<std::uint32_t>(j);
-}
 
 struct Peak {
   std::uint16_t votes;
@@ -113,71 +108,102 @@ void find_wire_candidates(std::span<const ObstaclePoint> points,
   const auto& table = directions();
   const int offsets = 2 * static_cast<int>(std::ceil(params.max_range_m / kOffsetBinM)) + 3;
   const double offset_zero = offsets / 2 * kOffsetBinM;
-  const std::size_t bins = static_cast<std::size_t>(kDirections) * offsets;
-  if (scratch.votes.size() != bins) scratch.votes.assign(bins, 0);
-  scratch.touched.clear();
-  scratch.full.clear();
   const auto least = static_cast<std::uint16_t>(params.min_points);
+  const auto row_size = static_cast<std::size_t>(offsets);
+  if (scratch.rows.size() != 3 * row_size) scratch.rows.assign(3 * row_size, 0);
 
   // 1. One vote per occupied plan cell and direction.
   scratch.cells.clear();
   for (std::uint32_t p = 0; p < points.size(); ++p) {
-    if (eligible[p]) scratch.cells.push_back(cell_key(points[p].enu_m.x(), points[p].enu_m.y()));
+    if (eligible[p]) scratch.cells.push_back(plan_cell_key(points[p].enu_m.x(), points[p].enu_m.y(), kVoteCellM));
   }
   std::sort(scratch.cells.begin(), scratch.cells.end());
   scratch.cells.erase(std::unique(scratch.cells.begin(), scratch.cells.end()), scratch.cells.end());
-  for (const std::uint64_t key : scratch.cells) {
-    const double x = (static_cast<double>(static_cast<std::int64_t>(key >> 32) -
-                                          (std::int64_t{1} << 31)) + 0.5) * kVoteCellM -
-                     aircraft_en.x();
-    const double y = (static_cast<double>(static_cast<std::int64_t>(key & 0xFFFFFFFFu) -
-                                          (std::int64_t{1} << 31)) + 0.5) * kVoteCellM -
-                     aircraft_en.y();
-    for (int k = 0; k < kDirections; ++k) {
-      const Direction& d = table[static_cast<std::size_t>(k)];
-      // ⌊·⌋ of a value ≥ 0 by truncation; one < 0 is off the table.
-      const double at_m = (x * d.cos_t + y * d.sin_t + offset_zero) / kOffsetBinM;
-      if (!(at_m >= 0.0)) continue;
-      const int bin = static_cast<int>(at_m);
-      if (bin >= offsets) continue;
-      const auto at = static_cast<std::uint32_t>(k * offsets + bin);
-      std::uint16_t& v = scratch.votes[at];
-      if (v == 0) scratch.touched.push_back(at);
-      if (v < UINT16_MAX) ++v;
-      if (v == least) scratch.full.push_back(at);
-    }
+  const std::size_t cells = scratch.cells.size();
+  scratch.cell_x.resize(cells);
+  scratch.cell_y.resize(cells);
+  scratch.cell_bin.resize(cells);
+  for (std::size_t c = 0; c < cells; ++c) {
+    const std::uint64_t key = scratch.cells[c];
+    scratch.cell_x[c] =
+        (static_cast<double>(plan_cell_i(key)) + 0.5) * kVoteCellM - aircraft_en.x();
+    scratch.cell_y[c] =
+        (static_cast<double>(plan_cell_j(key)) + 0.5) * kVoteCellM - aircraft_en.y();
   }
-
-  // 2. Peaks: local maxima (ties to the lower bin) with at least min_points votes.
+  // 2. Peaks: local maxima (ties to the lower bin) with at least min_points votes. Direction k's
+  // are decided once direction k + 1 is counted; a bin's index in the whole table is
+  // k × offsets + its offset bin.
   std::vector<Peak> peaks;
-  for (const std::uint32_t at : scratch.full) {
-    const int k = static_cast<int>(at) / offsets, b = static_cast<int>(at) % offsets;
-    const std::uint16_t v = scratch.votes[at];
-    bool peak = true;
-    for (int dk = -1; dk <= 1 && peak; ++dk) {
-      for (int db = -1; db <= 1 && peak; ++db) {
-        if (dk == 0 && db == 0) continue;
-        const int kk = k + dk, bb = b + db;
-        if (kk < 0 || kk >= kDirections || bb < 0 || bb >= offsets) continue;
-        const auto other = static_cast<std::uint32_t>(kk * offsets + bb);
-        const std::uint16_t w = scratch.votes[other];
-        if (w > v || (w == v && other < at)) peak = false;
+  const auto row_of = [&](int k) { return scratch.rows.data() + (k % 3) * row_size; };
+  const auto decide = [&](int k) {
+    const std::uint16_t* rows[3] = {k > 0 ? row_of(k - 1) : nullptr, row_of(k),
+                                    k + 1 < kDirections ? row_of(k + 1) : nullptr};
+    for (const std::uint32_t b : scratch.full[static_cast<std::size_t>(k % 3)]) {
+      const std::uint16_t v = rows[1][b];
+      bool peak = true;
+      for (int dk = -1; dk <= 1 && peak; ++dk) {
+        const std::uint16_t* row = rows[dk + 1];
+        if (row == nullptr) continue;
+        for (int db = -1; db <= 1 && peak; ++db) {
+          if (dk == 0 && db == 0) continue;
+          const int bb = static_cast<int>(b) + db;
+          if (bb < 0 || bb >= offsets) continue;
+          const std::uint16_t w = row[bb];
+          // The neighbour's index is the lower one when its direction is, or its offset in this one.
+          if (w > v || (w == v && (dk < 0 || (dk == 0 && db < 0)))) peak = false;
+        }
       }
+      if (peak) peaks.push_back({v, static_cast<std::uint32_t>(k * offsets) + b});
     }
-    if (peak) peaks.push_back({v, at});
+  };
+  const auto clear = [&](int k) {
+    std::uint16_t* row = row_of(k);
+    std::fill(row, row + row_size, std::uint16_t{0});
+    scratch.full[static_cast<std::size_t>(k % 3)].clear();
+  };
+  for (int k = 0; k < kDirections; ++k) {
+    if (k >= 3) clear(k);  // the row of direction k − 3, decided and done with
+    const Direction& d = table[static_cast<std::size_t>(k)];
+    const auto table_end = static_cast<double>(offsets);
+    for (std::size_t c = 0; c < cells; ++c) {
+      // ⌊·⌋ of a value ≥ 0 by truncation; one < 0 is off the table.
+      const double at_m = (scratch.cell_x[c] * d.cos_t + scratch.cell_y[c] * d.sin_t +
+                           offset_zero) / kOffsetBinM;
+      const bool on_table = at_m >= 0.0 && at_m < table_end;
+      scratch.cell_bin[c] = on_table ? static_cast<std::int32_t>(at_m) : -1;
+    }
+    std::uint16_t* row = row_of(k);
+    std::vector<std::uint32_t>& full = scratch.full[static_cast<std::size_t>(k % 3)];
+    for (std::size_t c = 0; c < cells; ++c) {
+      const std::int32_t bin = scratch.cell_bin[c];
+      if (bin < 0) continue;
+      std::uint16_t& v = row[bin];
+      if (v < UINT16_MAX) ++v;
+      if (v == least) full.push_back(static_cast<std::uint32_t>(bin));
+    }
+    if (k > 0) decide(k - 1);
   }
-  for (const std::uint32_t at : scratch.touched) scratch.votes[at] = 0;
-  std::sort(peaks.begin(), peaks.end(), [](const Peak& a, const Peak& b) {
-    return a.votes != b.votes ? a.votes > b.votes : a.bin < b.bin;
-  });
-  if (peaks.size() > kMaxPeaks) peaks.resize(kMaxPeaks);
+  decide(kDirections - 1);
+  for (int k = kDirections - 3; k < kDirections; ++k) clear(k);
+  // The kMaxPeaks strongest (a total order: bins are distinct).
+  const std::size_t kept = std::min(peaks.size(), kMaxPeaks);
+  std::partial_sort(peaks.begin(), peaks.begin() + static_cast<std::ptrdiff_t>(kept), peaks.end(),
+                    [](const Peak& a, const Peak& b) {
+                      return a.votes != b.votes ? a.votes > b.votes : a.bin < b.bin;
+                    });
+  peaks.resize(kept);
 
   // 3–4. Each peak's points, chained along its line.
+  // The points not yet taken by a piece of line, with their plan offsets from the aircraft.
   scratch.taken.assign(points.size(), 0);
   scratch.open.clear();
+  scratch.open_e.clear();
+  scratch.open_n.clear();
   for (std::uint32_t p = 0; p < points.size(); ++p) {
-    scratch.taken[p] = eligible[p] ? 0 : 1;
-    if (eligible[p]) scratch.open.push_back(p);
+    if (!eligible[p]) continue;
+    scratch.open.push_back(p);
+    scratch.open_e.push_back(points[p].enu_m.x() - aircraft_en.x());
+    scratch.open_n.push_back(points[p].enu_m.y() - aircraft_en.y());
   }
   std::vector<Chain> chains;
   for (const Peak& peak : peaks) {
@@ -197,11 +223,15 @@ void find_wire_candidates(std::span<const ObstaclePoint> points,
     const double reach = 2.0 * params.wire_band_m + 2.0 * half_bin;
     scratch.near.clear();
     scratch.offsets.clear();
-    for (const std::uint32_t p : scratch.open) {
-      if (scratch.taken[p]) continue;
-      const double t = lateral(points[p]);
+    const std::size_t open = scratch.open.size();
+    scratch.open_t.resize(open);
+    for (std::size_t o = 0; o < open; ++o) {  // lateral(), on vector lanes
+      scratch.open_t[o] = scratch.open_e[o] * d.cos_t + scratch.open_n[o] * d.sin_t - offset;
+    }
+    for (std::size_t o = 0; o < open; ++o) {
+      const double t = scratch.open_t[o];
       if (std::abs(t) > reach) continue;
-      scratch.near.push_back(p);
+      scratch.near.push_back(scratch.open[o]);
       if (std::abs(t) <= params.wire_band_m + half_bin) scratch.offsets.push_back(t);
     }
     if (scratch.offsets.size() < static_cast<std::size_t>(params.min_points)) continue;
@@ -252,6 +282,7 @@ void find_wire_candidates(std::span<const ObstaclePoint> points,
       best->points.push_back(p);
     }
 
+    bool any_taken = false;
     for (Chain& chain : chains) {
       if (chain.points.size() < static_cast<std::size_t>(params.min_points)) continue;
       const double length = s_of(chain.points.back()) - s_of(chain.points.front());
@@ -264,7 +295,20 @@ void find_wire_candidates(std::span<const ObstaclePoint> points,
       if (!piece_of_line(length, hi - lo)) continue;
       for (const std::uint32_t p : chain.points) scratch.taken[p] = 1;
       out.push_back({std::move(chain.points), along, length, hi - lo});
+      any_taken = true;
     }
+    if (!any_taken) continue;
+    std::size_t left = 0;  // the open points without those taken, in order
+    for (std::size_t o = 0; o < scratch.open.size(); ++o) {
+      if (scratch.taken[scratch.open[o]]) continue;
+      scratch.open[left] = scratch.open[o];
+      scratch.open_e[left] = scratch.open_e[o];
+      scratch.open_n[left] = scratch.open_n[o];
+      ++left;
+    }
+    scratch.open.resize(left);
+    scratch.open_e.resize(left);
+    scratch.open_n.resize(left);
   }
 
   // 5. Pieces of one conductor joined, in candidate order.

@@ -23,6 +23,7 @@
 // Whether a candidate is a WIRE (isolation, clearance) is decided by the caller, who knows the
 // other objects.
 #include <Eigen/Core>
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -41,14 +42,19 @@ struct WireCandidate {
 
 // Reused buffers of find_wire_candidates: it allocates only while they grow.
 struct WireSearchScratch {
-  std::vector<std::uint16_t> votes;    // all zero between calls
-  std::vector<std::uint32_t> touched;  // the bins a call voted in, to zero them again
-  std::vector<std::uint32_t> full;     // the bins that reached min_points votes
+  // The vote table is counted a direction at a time: three rows of offsets (the direction being
+  // counted and its two predecessors, whose peaks it decides), all zero between calls.
+  std::vector<std::uint16_t> rows;
+  std::array<std::vector<std::uint32_t>, 3> full;  // each row's bins that reached min_points votes
   std::vector<std::uint64_t> cells;  // the eligible points' plan cells, sorted, each once
+  std::vector<double> cell_x, cell_y;  // their centres from the aircraft
+  std::vector<std::int32_t> cell_bin;  // their bins in the direction being counted (−1: none)
   std::vector<std::uint8_t> taken;
   std::vector<std::uint32_t> inliers;
   std::vector<double> offsets;
-  std::vector<std::uint32_t> open;  // the eligible points, by index
+  std::vector<std::uint32_t> open;  // the eligible points not yet taken, by index …
+  std::vector<double> open_e, open_n;  // … their plan offsets from the aircraft …
+  std::vector<double> open_t;          // … and from the line of the peak being followed
   std::vector<std::uint32_t> near;  // a peak's open points near its line
 };
 

@@ -129,6 +129,16 @@ TEST(GroundMap, TheLowestPairOfAgreeingReturnsOfACellIsItsGround) {
   const double side = 5.0 * (std::ceil(2.0 * 10.0 / 5.0) + 4);
   small.add(1.0 + side, 1.0, 9.0);
   EXPECT_TRUE(std::isnan(small.ground_u(1.0, 1.0)));
+  // Across the table's edge (cell −1 lies in the last slot of its row) and below zero.
+  GroundMap edge(5.0, 10.0);
+  edge.add(-2.0, -2.0, 4.0);
+  edge.add(-2.0, -2.0, 4.0);
+  EXPECT_EQ(edge.ground_u(1.0, 1.0), 4.0);    // cell (0, 0) sees (−1, −1)
+  EXPECT_EQ(edge.ground_u(-6.0, -6.0), 4.0);  // cell (−2, −2) sees it too
+  EXPECT_TRUE(std::isnan(edge.ground_u(-12.0, -2.0)));  // (−3, −1): two cells away
+  EXPECT_TRUE(std::isnan(edge.ground_u(-2.0 - side, -2.0)));  // its slot, another cell
+  edge.add(-2.0 - 3.0 * side, -2.0, 9.0);  // three tables away takes the slot over
+  EXPECT_TRUE(std::isnan(edge.ground_u(-2.0, -2.0)));
 }
 
 // A synthetic scene seen from (−400, 0, 60): flat ground at 0 from e = −300 to 400, a wire across
