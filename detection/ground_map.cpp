@@ -37,18 +37,20 @@ void GroundMap::add(double e, double n, double u) {
     cell.lowest.fill(kNone);
     cell.ground = kNone;
   }
-  if (!(u < cell.lowest.back())) return;
-  // Insert u among the kept lowest, then the lowest pair that agrees.
-  std::size_t k = kKept - 1;
-  for (; k > 0 && cell.lowest[k - 1] > u; --k) cell.lowest[k] = cell.lowest[k - 1];
-  cell.lowest[k] = u;
-  cell.ground = kNone;
-  for (std::size_t a = 0; a + 1 < kKept; ++a) {
-    if (cell.lowest[a + 1] - cell.lowest[a] <= kAgreeM) {
-      cell.ground = cell.lowest[a + 1];
-      break;
-    }
+  // The kKept lowest of the kept and u, by a network of min and max rather than branches on
+  // where u goes (which a scan's returns make unpredictable); u no lower than all of them leaves
+  // them as they are. Then the lowest pair that agrees.
+  double carried = u;
+  for (double& kept : cell.lowest) {
+    const double low = std::min(kept, carried);
+    carried = std::max(kept, carried);
+    kept = low;
   }
+  double ground = kNone;
+  for (std::size_t a = kKept - 1; a-- > 0;) {
+    ground = cell.lowest[a + 1] - cell.lowest[a] <= kAgreeM ? cell.lowest[a + 1] : ground;
+  }
+  cell.ground = ground;
 }
 
 double GroundMap::ground_u(double e, double n) const {

@@ -11,7 +11,7 @@ namespace {
 
 constexpr double kCellM = 1.0;
 
-using Keyed = ClusterScratch::Keyed;
+using Keyed = CellPoint;
 using Cell = ClusterScratch::Cell;
 
 std::uint32_t root_of(std::vector<std::uint32_t>& parent, std::uint32_t a) {
@@ -61,9 +61,7 @@ void find_clusters(std::span<const ObstaclePoint> points, std::span<const std::u
     keyed.push_back({plan_cell_key(points[p].enu_m.x(), points[p].enu_m.y(), kCellM), p});
   }
   if (keyed.empty()) return;
-  std::sort(keyed.begin(), keyed.end(), [](const Keyed& a, const Keyed& b) {
-    return a.key != b.key ? a.key < b.key : a.point < b.point;
-  });
+  sort_by_cell(keyed, scratch.sorted);
   std::vector<Cell>& cells = scratch.cells;
   cells.clear();
   for (std::uint32_t k = 0; k < keyed.size(); ++k) {

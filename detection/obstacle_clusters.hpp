@@ -11,6 +11,7 @@
 
 #include "detection/detector_params.hpp"
 #include "detection/obstacle_class.hpp"
+#include "detection/plan_cells.hpp"
 
 namespace owsim {
 
@@ -20,15 +21,12 @@ struct PointCluster {
 
 // Reused buffers of find_clusters.
 struct ClusterScratch {
-  struct Keyed {
-    std::uint64_t key;  // its plan cell's
-    std::uint32_t point;
-  };
   struct Cell {
     std::uint64_t key;
     std::uint32_t first, count;  // its points in `keyed`
   };
-  std::vector<Keyed> keyed;
+  std::vector<CellPoint> keyed;
+  std::vector<CellPoint> sorted;  // the radix sort's other half
   std::vector<Cell> cells;
   std::vector<std::uint32_t> parent;
   std::vector<std::uint32_t> root_of_point;

@@ -18,14 +18,17 @@ class PlanNeighbours {
                  double r)
       : points_(points), r_(r) {
     for (const std::uint32_t p : members) entries_.push_back({key(points[p].enu_m), p});
-    std::sort(entries_.begin(), entries_.end());
+    std::vector<CellPoint> buffer;
+    sort_by_cell(entries_, buffer);
   }
   [[nodiscard]] bool any_within(const Eigen::Vector3d& at) const {
     const auto [i, j] = cell(at);
     for (std::int64_t di = -1; di <= 1; ++di) {
       // Cells (i + di, j − 1 … j + 1) have consecutive keys.
       const std::uint64_t first = plan_cell_key(i + di, j - 1);
-      auto it = std::lower_bound(entries_.begin(), entries_.end(), Entry{first, 0});
+      auto it = std::lower_bound(
+          entries_.begin(), entries_.end(), first,
+          [](const CellPoint& entry, std::uint64_t key) { return entry.key < key; });
       for (; it != entries_.end() && it->key <= first + 2; ++it) {
         if ((points_[it->point].enu_m.head<2>() - at.head<2>()).norm() <= r_) return true;
       }
@@ -34,11 +37,6 @@ class PlanNeighbours {
   }
 
  private:
-  struct Entry {
-    std::uint64_t key;
-    std::uint32_t point;
-    bool operator<(const Entry& o) const { return key != o.key ? key < o.key : point < o.point; }
-  };
   [[nodiscard]] std::pair<std::int64_t, std::int64_t> cell(const Eigen::Vector3d& p) const {
     return {cell_index(p.x(), r_), cell_index(p.y(), r_)};
   }
@@ -47,7 +45,7 @@ class PlanNeighbours {
   }
   std::span<const ObstaclePoint> points_;
   double r_;
-  std::vector<Entry> entries_;
+  std::vector<CellPoint> entries_;  // by cell (within a cell, in no order that matters)
 };
 
 // Whether a cluster of at least min_points points may hold a piece of a wire: 15 m long or more
@@ -179,6 +177,7 @@ void ObstacleDetector::classify(const Eigen::Vector3d& aircraft) {
   const auto least = static_cast<std::size_t>(params_.min_points);
   std::vector<std::uint32_t> others;
   for (const PointCluster& cluster : clusters_) {
+    if (wires_.empty()) break;  // no wire to isolate
     if (cluster.points.size() >= least) {
       others.insert(others.end(), cluster.points.begin(), cluster.points.end());
     }

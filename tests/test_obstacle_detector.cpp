@@ -7,12 +7,14 @@
 
 #include <Eigen/Eigenvalues>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>
 
 #include "detection/ground_map.hpp"
 #include "detection/obstacle_detector.hpp"
+#include "detection/plan_cells.hpp"
 #include "geometry/error.hpp"
 #include "io/scenario/value_ranges.hpp"
 
@@ -93,6 +95,46 @@ TEST(ObstacleRules, PrincipalAxisIsTheEigensolversLargerEigenvector) {
   EXPECT_EQ(principal_axis(1.0, 0.0, 4.0), Eigen::Vector2d(0.0, 1.0));
   EXPECT_EQ(principal_axis(2.0, 0.0, 2.0), Eigen::Vector2d::UnitX());  // isotropic
   EXPECT_EQ(principal_axis(0.0, 0.0, 0.0), Eigen::Vector2d::UnitX());  // one point
+}
+
+TEST(PlanCells, CellIndexIsTheFloorOfTheQuotient) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> any(-3000.0, 3000.0);
+  for (int k = 0; k < 20000; ++k) {
+    const double x = k < 8 ? std::vector<double>{-5.0, -0.0, 0.0, 5.0, -10.0, 4.999999, -1e-300,
+                                                 2999.9999999}[static_cast<std::size_t>(k)]
+                           : any(rng);
+    for (const double size : {1.0, 5.0, 0.25}) {
+      EXPECT_EQ(cell_index(x, size), static_cast<std::int64_t>(std::floor(x / size))) << x;
+    }
+  }
+  // Keys sort as (i, j) do; (i, j + 1) is one more; the indices come back.
+  EXPECT_LT(plan_cell_key(std::int64_t{-1}, 7), plan_cell_key(std::int64_t{0}, -7));
+  EXPECT_EQ(plan_cell_key(std::int64_t{-3}, -1) + 1, plan_cell_key(std::int64_t{-3}, 0));
+  EXPECT_EQ(plan_cell_i(plan_cell_key(std::int64_t{-3}, 9)), -3);
+  EXPECT_EQ(plan_cell_j(plan_cell_key(std::int64_t{-3}, -9)), -9);
+}
+
+TEST(PlanCells, SortByCellIsTheComparisonSortByCellThenPoint) {
+  std::mt19937_64 rng(5);
+  // A few metres, a window of kilometres, and cells too far apart for the radix sort's box.
+  for (const double spread : {3.0, 2500.0, 1e9}) {
+    std::uniform_real_distribution<double> any(-spread, spread);
+    std::vector<CellPoint> cell_points, buffer;
+    for (std::uint32_t p = 0; p < 5000; ++p) {
+      cell_points.push_back({plan_cell_key(any(rng), any(rng), 1.0), p});
+    }
+    std::vector<CellPoint> expected = cell_points;
+    std::sort(expected.begin(), expected.end(), [](const CellPoint& a, const CellPoint& b) {
+      return a.key != b.key ? a.key < b.key : a.point < b.point;
+    });
+    sort_by_cell(cell_points, buffer);
+    ASSERT_EQ(cell_points.size(), expected.size());
+    for (std::size_t k = 0; k < expected.size(); ++k) {
+      EXPECT_EQ(cell_points[k].key, expected[k].key) << spread << " at " << k;
+      EXPECT_EQ(cell_points[k].point, expected[k].point) << spread << " at " << k;
+    }
+  }
 }
 
 TEST(GroundMap, TheLowestPairOfAgreeingReturnsOfACellIsItsGround) {

@@ -430,10 +430,27 @@ std::uint64_t decode_frame_words(const ScanParams& scan, const RecordingLayout& 
   frame.pulses.clear();
   frame.counter1.clear();
   frame.counter2.clear();
+  // What pulse_of_frame gives that depends on the slot alone (fiber, reference fiber, α, β_FC),
+  // once per slot: the pattern's β and encoder of each pulse would only be replaced (MilOWS), and
+  // HELLAS's linear β is taken alone.
+  const int per_line = scan.fibers_per_line;
+  if (!frame.words.empty()) {  // pulse_of_frame's error for a pulse outside the frame
+    (void)pulse_of_frame(scan, pattern, first_pulse);
+    (void)pulse_of_frame(scan, pattern, first_pulse + static_cast<int>(frame.words.size()) - 1);
+  }
+  std::vector<Pulse> by_slot(static_cast<std::size_t>(per_line));
+  std::vector<double> sawtooth(static_cast<std::size_t>(per_line));
+  for (int s = 0; s < per_line && s < per_frame; ++s) {
+    const Pulse& pulse = by_slot[static_cast<std::size_t>(s)] = pulse_of_frame(scan, pattern, s);
+    sawtooth[static_cast<std::size_t>(s)] = sawtooth_deg(scan, pulse.fiber);
+  }
   for (std::size_t j = 0; j < frame.words.size(); ++j) {
     const int k = first_pulse + static_cast<int>(j);
     const WordFields word = fields_of(scan.model, frame.words[j], scan.counter.timeout_counts);
-    Pulse pulse = pulse_of_frame(scan, pattern, k);
+    const auto slot = static_cast<std::size_t>(k % per_line);
+    Pulse pulse = by_slot[slot];
+    pulse.index = k;
+    pulse.line = k / per_line;
     pulse.time_s = layout.pulse_time_s(scan, frame.frame, k);
     pulse.frame_gate = word.frame_gate;
     pulse.line_gate = word.line_gate;
@@ -441,10 +458,11 @@ std::uint64_t decode_frame_words(const ScanParams& scan, const RecordingLayout& 
     if (scan.model == SensorModel::milows) {
       pulse.encoder = word.encoder;
       pulse.mirror_beta_deg = mirror_beta[static_cast<std::size_t>(word.encoder + 32768)];
-      pulse.beta_deg = pulse.mirror_beta_deg + sawtooth_deg(scan, pulse.fiber);
     } else {
+      pulse.mirror_beta_deg = mirror_beta_deg(scan, pattern, k);
       pulse.encoder = 0;
     }
+    pulse.beta_deg = pulse.mirror_beta_deg + sawtooth[slot];
     const std::uint16_t expected_tag = clock.modulus == kMilowsTimeTagModulus
                                            ? milows_time_tag(pulse.time_s)
                                            : hellas_time_tag(pulse.time_s);
