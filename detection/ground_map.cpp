@@ -26,12 +26,17 @@ std::size_t GroundMap::slot(std::int64_t a, std::int64_t b) const {
   return static_cast<std::size_t>(a * side_ + b);
 }
 
-void GroundMap::add(double e, double n, double u) {
+GroundMap::Place GroundMap::place_of(double e, double n) const {
   const std::int64_t i = cell_index(e, cell_m_);
   const std::int64_t j = cell_index(n, cell_m_);
+  return {i, j, wrapped(i), wrapped(j)};
+}
+
+void GroundMap::add(const Place& at, double u) {
+  const auto [i, j, a, b] = at;
   ++version_;
   constexpr double kNone = std::numeric_limits<double>::infinity();
-  Cell& cell = cells_[slot(wrapped(i), wrapped(j))];
+  Cell& cell = cells_[slot(a, b)];
   if (cell.i != i || cell.j != j) {
     cell = Cell{i, j};
     cell.lowest.fill(kNone);
@@ -47,16 +52,14 @@ void GroundMap::add(double e, double n, double u) {
     kept = low;
   }
   double ground = kNone;
-  for (std::size_t a = kKept - 1; a-- > 0;) {
-    ground = cell.lowest[a + 1] - cell.lowest[a] <= kAgreeM ? cell.lowest[a + 1] : ground;
+  for (std::size_t k = kKept - 1; k-- > 0;) {
+    ground = cell.lowest[k + 1] - cell.lowest[k] <= kAgreeM ? cell.lowest[k + 1] : ground;
   }
   cell.ground = ground;
 }
 
-double GroundMap::ground_u(double e, double n) const {
-  const std::int64_t i = cell_index(e, cell_m_);
-  const std::int64_t j = cell_index(n, cell_m_);
-  const std::int64_t a = wrapped(i), b = wrapped(j);
+double GroundMap::ground_u(const Place& at) const {
+  const auto [i, j, a, b] = at;
   const Cell& own = cells_[slot(a, b)];
   const bool own_cell = own.i == i && own.j == j;
   if (own_cell && own.around_version == version_) return own.around;

@@ -23,11 +23,20 @@ class GroundMap {
   // Cells of `cell_m` metres over a table reaching at least `reach_m` each way.
   GroundMap(double cell_m, double reach_m);
 
+  // A plan position's cell: its indices and its place in the table.
+  struct Place {
+    std::int64_t i, j;
+    std::int64_t a, b;  // the wrapped indices
+  };
+  [[nodiscard]] Place place_of(double e, double n) const;
+
   // A return at (e, n, u): lowers its cell's ground to u.
-  void add(double e, double n, double u);
+  void add(double e, double n, double u) { add(place_of(e, n), u); }
+  void add(const Place& at, double u);
   // The lowest cell ground in the 3×3 cells around (e, n); NaN when none of them has one. Kept in
   // the cell until the next add(), so the many returns of one cell look it up once.
-  [[nodiscard]] double ground_u(double e, double n) const;
+  [[nodiscard]] double ground_u(double e, double n) const { return ground_u(place_of(e, n)); }
+  [[nodiscard]] double ground_u(const Place& at) const;
   [[nodiscard]] double cell_m() const { return cell_m_; }
 
  private:

@@ -97,18 +97,23 @@ ObstacleDetector::ObstacleDetector(const DetectorParams& params, double frame_pe
 std::span<const ObstacleWarning> ObstacleDetector::add_frame(const DetectorFrame& frame) {
   const Eigen::Vector3d& aircraft = frame.aircraft_enu_m;
   // 1. The ground, then the frame's elevated returns.
-  for (const Eigen::Vector3d& p : frame.returns_enu_m) {
-    if (!p.allFinite() || (p - aircraft).norm() > params_.max_range_m) continue;
-    ground_.add(p.x(), p.y(), p.z());
-  }
-  std::vector<ObstaclePoint> elevated;
-  for (const Eigen::Vector3d& p : frame.returns_enu_m) {
+  // The returns within reach, with their ranges and ground cells (looked up again below).
+  nearby_.clear();
+  for (std::uint32_t k = 0; k < frame.returns_enu_m.size(); ++k) {
+    const Eigen::Vector3d& p = frame.returns_enu_m[k];
     if (!p.allFinite()) continue;
     const double range = (p - aircraft).norm();
     if (range > params_.max_range_m) continue;
+    const GroundMap::Place at = ground_.place_of(p.x(), p.y());
+    ground_.add(at, p.z());
+    nearby_.push_back({at, range, k});
+  }
+  std::vector<ObstaclePoint> elevated;
+  for (const NearbyReturn& near : nearby_) {
+    const Eigen::Vector3d& p = frame.returns_enu_m[near.index];
     // A point over ground not yet seen twice nearby has no visible height: not kept.
-    const double ground = ground_.ground_u(p.x(), p.y());
-    if (p.z() - ground >= params_.min_height_m) elevated.push_back({p, ground, range});
+    const double ground = ground_.ground_u(near.cell);
+    if (p.z() - ground >= params_.min_height_m) elevated.push_back({p, ground, near.range_m});
   }
   window_.push_back(std::move(elevated));
   while (window_.size() > window_frames_) window_.pop_front();

@@ -75,6 +75,12 @@ class ObstacleDetector {
   std::deque<std::vector<ObstaclePoint>> window_;
   ObstacleTracks tracks_;
   // Per-frame buffers.
+  struct NearbyReturn {
+    GroundMap::Place cell;
+    double range_m;
+    std::uint32_t index;  // in the frame's returns
+  };
+  std::vector<NearbyReturn> nearby_;
   std::vector<ObstaclePoint> points_;
   WireSearchScratch wire_scratch_;
   ClusterScratch cluster_scratch_;

@@ -5,11 +5,19 @@
 
 namespace owsim {
 
+std::pair<double, double> alpha_sin_cos(double alpha_deg) {
+  const double alpha = alpha_deg * (std::numbers::pi / 180.0);
+  return {std::sin(alpha), std::cos(alpha)};
+}
+
+Eigen::Vector3d arc_unit_ray(double sin_alpha, double cos_alpha, double beta_deg) {
+  const double beta = beta_deg * (std::numbers::pi / 180.0);
+  return {sin_alpha, cos_alpha * std::sin(beta), cos_alpha * std::cos(beta)};
+}
+
 Eigen::Vector3d arc_unit_ray(double alpha_deg, double beta_deg) {
-  constexpr double kRadPerDeg = std::numbers::pi / 180.0;
-  const double alpha = alpha_deg * kRadPerDeg, beta = beta_deg * kRadPerDeg;
-  const double cos_alpha = std::cos(alpha);
-  return {std::sin(alpha), cos_alpha * std::sin(beta), cos_alpha * std::cos(beta)};
+  const auto [sin_alpha, cos_alpha] = alpha_sin_cos(alpha_deg);
+  return arc_unit_ray(sin_alpha, cos_alpha, beta_deg);
 }
 
 Eigen::Vector3d src_from_arc(const Eigen::Vector3d& abc) { return {abc.z(), abc.x(), abc.y()}; }

@@ -15,6 +15,7 @@
 // boresight 4° down. The sensor origin is the body origin + R · lever arm (body frame, metres).
 // Exact to rounding (~1e-15 in each direction component); any finite angles.
 #include <Eigen/Core>
+#include <utility>
 
 #include "geometry/rotation.hpp"
 #include "sensor/sensor_model.hpp"
@@ -41,6 +42,10 @@ struct Pose {
 
 // ARC unit ray (a, b, c) = (sin α, cos α sin β, cos α cos β)  (SENSOR-SPEC §4, eq 9.1–9.3)
 [[nodiscard]] Eigen::Vector3d arc_unit_ray(double alpha_deg, double beta_deg);
+// The same from sin α and cos α (a fiber's, taken once by whoever places many of its pulses).
+[[nodiscard]] Eigen::Vector3d arc_unit_ray(double sin_alpha, double cos_alpha, double beta_deg);
+// sin α and cos α as arc_unit_ray takes them.
+[[nodiscard]] std::pair<double, double> alpha_sin_cos(double alpha_deg);
 // SRC from ARC, unrotated: (X, Y, Z)_src = (c, a, b)  (SENSOR-SPEC §4 pinned conventions)
 [[nodiscard]] Eigen::Vector3d src_from_arc(const Eigen::Vector3d& abc);
 // R_model: identity for HELLAS, Rx(−90°) for MilOWS  (SENSOR-SPEC §4 pinned conventions)

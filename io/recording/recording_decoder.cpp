@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <type_traits>
 #include <utility>
 
 #include "geometry/error.hpp"
@@ -90,12 +91,14 @@ TagClock tag_clock(SensorModel model) {
                                       : TagClock{kHellasTimeTagTickS, kHellasTimeTagModulus};
 }
 
-// One word as the decoder needs it, whatever the format (gates active-high).
+// One word as the decoder needs it, whatever the format (gates active-high). The two gates lie
+// apart: side by side, GCC copied them into a Pulse as one half-word read back from their two
+// byte stores, a store-forwarding stall that took half of decode_frame_words' time.
 struct WordFields {
   bool header = false;  // HELLAS Select = 1
   bool frame_gate = false;
-  bool line_gate = false;
   std::uint16_t time_tag = 0;
+  bool line_gate = false;
   std::uint16_t counter1 = 0;
   std::uint16_t counter2 = 0;
   EncoderCount encoder = 0;
@@ -103,7 +106,9 @@ struct WordFields {
   bool mov_dir = false;
 };
 
-WordFields fields_of(SensorModel model, std::uint64_t bits, std::uint16_t timeout) {
+// Inlined into decode_frame_words' loop, which takes it for one model at a time.
+[[gnu::always_inline]] inline WordFields fields_of(SensorModel model, std::uint64_t bits,
+                                                   std::uint16_t timeout) {
   WordFields out;
   if (model == SensorModel::milows) {
     const MilowsWord word = unpack_milows(bits);
@@ -365,7 +370,8 @@ const std::vector<double>& mirror_beta_by_encoder() {
 }
 
 // HELLAS: the frame's mirror β from its NI mark, the file's header word or the nominal start.
-void decode_hellas_beta(const ScanParams& scan, const RecordingLayout& layout, DecodedFrame& frame) {
+void decode_hellas_beta(const ScanParams& scan, const RecordingLayout& layout,
+                        DecodedFrame& frame) {
   const double maf = hellas_mirror_angle_factor_deg(scan);
   const int direction = frame.pulses.front().mov_dir != 0 ? -1 : 1;
   const int first_pulse = frame.pulses.front().index;
@@ -444,32 +450,42 @@ std::uint64_t decode_frame_words(const ScanParams& scan, const RecordingLayout& 
     const Pulse& pulse = by_slot[static_cast<std::size_t>(s)] = pulse_of_frame(scan, pattern, s);
     sawtooth[static_cast<std::size_t>(s)] = sawtooth_deg(scan, pulse.fiber);
   }
-  for (std::size_t j = 0; j < frame.words.size(); ++j) {
-    const int k = first_pulse + static_cast<int>(j);
-    const WordFields word = fields_of(scan.model, frame.words[j], scan.counter.timeout_counts);
-    const auto slot = static_cast<std::size_t>(k % per_line);
-    Pulse pulse = by_slot[slot];
-    pulse.index = k;
-    pulse.line = k / per_line;
-    pulse.time_s = layout.pulse_time_s(scan, frame.frame, k);
-    pulse.frame_gate = word.frame_gate;
-    pulse.line_gate = word.line_gate;
-    pulse.mov_dir = word.mov_dir ? 1 : 0;
-    if (scan.model == SensorModel::milows) {
-      pulse.encoder = word.encoder;
-      pulse.mirror_beta_deg = mirror_beta[static_cast<std::size_t>(word.encoder + 32768)];
-    } else {
-      pulse.mirror_beta_deg = mirror_beta_deg(scan, pattern, k);
-      pulse.encoder = 0;
+  // The loop for one model at a time: with the model a constant, a word's fields stay in
+  // registers (a loop over both kept them in memory, and the gates' byte stores read back as one
+  // half-word stalled every pulse).
+  const auto decode_words = [&](auto model) {
+    for (std::size_t j = 0; j < frame.words.size(); ++j) {
+      const int k = first_pulse + static_cast<int>(j);
+      const WordFields word = fields_of(model(), frame.words[j], scan.counter.timeout_counts);
+      const auto slot = static_cast<std::size_t>(k % per_line);
+      Pulse pulse = by_slot[slot];
+      pulse.index = k;
+      pulse.line = k / per_line;
+      pulse.time_s = layout.pulse_time_s(scan, frame.frame, k);
+      pulse.frame_gate = word.frame_gate;
+      pulse.line_gate = word.line_gate;
+      pulse.mov_dir = word.mov_dir ? 1 : 0;
+      if constexpr (model() == SensorModel::milows) {
+        pulse.encoder = word.encoder;
+        pulse.mirror_beta_deg = mirror_beta[static_cast<std::size_t>(word.encoder + 32768)];
+      } else {
+        pulse.mirror_beta_deg = mirror_beta_deg(scan, pattern, k);
+        pulse.encoder = 0;
+      }
+      pulse.beta_deg = pulse.mirror_beta_deg + sawtooth[slot];
+      const std::uint16_t expected_tag = clock.modulus == kMilowsTimeTagModulus
+                                             ? milows_time_tag(pulse.time_s)
+                                             : hellas_time_tag(pulse.time_s);
+      if (expected_tag != word.time_tag) ++mismatches;
+      frame.pulses.push_back(pulse);
+      frame.counter1.push_back(word.counter1);
+      frame.counter2.push_back(word.counter2);
     }
-    pulse.beta_deg = pulse.mirror_beta_deg + sawtooth[slot];
-    const std::uint16_t expected_tag = clock.modulus == kMilowsTimeTagModulus
-                                           ? milows_time_tag(pulse.time_s)
-                                           : hellas_time_tag(pulse.time_s);
-    if (expected_tag != word.time_tag) ++mismatches;
-    frame.pulses.push_back(pulse);
-    frame.counter1.push_back(word.counter1);
-    frame.counter2.push_back(word.counter2);
+  };
+  if (scan.model == SensorModel::milows) {
+    decode_words(std::integral_constant<SensorModel, SensorModel::milows>{});
+  } else {
+    decode_words(std::integral_constant<SensorModel, SensorModel::hellas>{});
   }
 
   frame.ni_pulse = -1;
