@@ -430,7 +430,6 @@ std::uint64_t decode_frame_words(const ScanParams& scan, const RecordingLayout& 
   FrameSweep pattern;
   pattern.frame = frame.frame;
   pattern.direction = (frame.frame & 1) == 0 ? 1 : -1;
-  const TagClock clock = tag_clock(scan.model);
   const std::vector<double>& mirror_beta = mirror_beta_by_encoder();
   std::uint64_t mismatches = 0;
   frame.pulses.clear();
@@ -450,6 +449,13 @@ std::uint64_t decode_frame_words(const ScanParams& scan, const RecordingLayout& 
     const Pulse& pulse = by_slot[static_cast<std::size_t>(s)] = pulse_of_frame(scan, pattern, s);
     sawtooth[static_cast<std::size_t>(s)] = sawtooth_deg(scan, pulse.fiber);
   }
+  // The words' time tags and the pulses' times, checked after the loop (the MilOWS tags a batch at
+  // a time).
+  thread_local std::vector<double> times;
+  thread_local std::vector<std::uint16_t> tags, expected;
+  times.resize(frame.words.size());
+  tags.resize(frame.words.size());
+  expected.resize(frame.words.size());
   // The loop for one model at a time: with the model a constant, a word's fields stay in
   // registers (a loop over both kept them in memory, and the gates' byte stores read back as one
   // half-word stalled every pulse).
@@ -473,10 +479,8 @@ std::uint64_t decode_frame_words(const ScanParams& scan, const RecordingLayout& 
         pulse.encoder = 0;
       }
       pulse.beta_deg = pulse.mirror_beta_deg + sawtooth[slot];
-      const std::uint16_t expected_tag = clock.modulus == kMilowsTimeTagModulus
-                                             ? milows_time_tag(pulse.time_s)
-                                             : hellas_time_tag(pulse.time_s);
-      if (expected_tag != word.time_tag) ++mismatches;
+      times[j] = pulse.time_s;
+      tags[j] = word.time_tag;
       frame.pulses.push_back(pulse);
       frame.counter1.push_back(word.counter1);
       frame.counter2.push_back(word.counter2);
@@ -484,9 +488,12 @@ std::uint64_t decode_frame_words(const ScanParams& scan, const RecordingLayout& 
   };
   if (scan.model == SensorModel::milows) {
     decode_words(std::integral_constant<SensorModel, SensorModel::milows>{});
+    milows_time_tags(times, expected);
   } else {
     decode_words(std::integral_constant<SensorModel, SensorModel::hellas>{});
+    for (std::size_t j = 0; j < times.size(); ++j) expected[j] = hellas_time_tag(times[j]);
   }
+  for (std::size_t j = 0; j < tags.size(); ++j) mismatches += expected[j] != tags[j] ? 1 : 0;
 
   frame.ni_pulse = -1;
   frame.sweep = pattern;
