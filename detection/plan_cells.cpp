@@ -7,6 +7,7 @@
 namespace owsim {
 
 void sort_by_cell(std::vector<CellPoint>& keyed, std::vector<CellPoint>& buffer) {
+  if (keyed.size() < 2) return;  // in order already (and no box to take)
   std::int64_t i_lo = INT64_MAX, i_hi = INT64_MIN, j_lo = INT64_MAX, j_hi = INT64_MIN;
   for (const CellPoint& k : keyed) {
     i_lo = std::min(i_lo, plan_cell_i(k.key));

@@ -117,6 +117,12 @@ TEST(PlanCells, CellIndexIsTheFloorOfTheQuotient) {
 
 TEST(PlanCells, SortByCellIsTheComparisonSortByCellThenPoint) {
   std::mt19937_64 rng(5);
+  std::vector<CellPoint> none, one{{plan_cell_key(-3.5, 2.0, 1.0), 7}}, buffer;
+  sort_by_cell(none, buffer);  // no points: no box, nothing to do
+  EXPECT_TRUE(none.empty());
+  sort_by_cell(one, buffer);
+  ASSERT_EQ(one.size(), 1u);
+  EXPECT_EQ(one[0].point, 7u);
   // A few metres, a window of kilometres, and cells too far apart for the radix sort's box.
   for (const double spread : {3.0, 2500.0, 1e9}) {
     std::uniform_real_distribution<double> any(-spread, spread);
